@@ -1,0 +1,113 @@
+#pragma once
+/// \file
+/// The discrete energy of a growing Kirchhoff-Love shell on Loop subdivision elements:
+/// value, exact gradient and exact sparse Hessian with respect to all control coordinates.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "libshell/assembly/reference_quadrature.hpp"
+#include "libshell/energy/circumferential_growth.hpp"
+#include "libshell/energy/material.hpp"
+#include "libshell/mesh/mesh_topology.hpp"
+#include "libshell/mesh/triangle_mesh.hpp"
+#include "libshell/subdivision/element_patches.hpp"
+#include "solvers/newton/sparse_objective.hpp"
+
+namespace growshell {
+
+/// What the model contains besides the mesh. The defaults are the paper's scene
+/// (Y = 1e4 Pa, nu = 0.3, h = 0.02 m, growth about the origin).
+struct ShellModelSettings {
+  Material material;
+  ThicknessField thickness = constant_thickness(0.02);
+  /// Polynomial exactness of the triangle rule (1..6); 2 (three points) is the default.
+  int quadrature_degree = 2;
+  CircumferentialGrowth growth;
+  /// OpenMP threads for assembly; 0 means OpenMP's default. Results are deterministic for a
+  /// fixed thread count.
+  int threads = 0;
+};
+
+/// Energy parts of a configuration (SI units).
+struct ShellEnergyBreakdown {
+  double stretching = 0.0;  ///< J
+  double bending = 0.0;     ///< J
+  double bending_density_integral = 0.0;  ///< integral of U_b over the grown reference (1)
+  double current_area = 0.0;              ///< m^2
+  double grown_area = 0.0;                ///< target (grown reference) area, m^2
+  double total() const { return stretching + bending; }
+  /// Normalised bending energy E_b-hat = (integral of U_b) / current area (1/m^2).
+  double normalized_bending() const { return bending_density_integral / current_area; }
+};
+
+/// Energy E(x; phi_e) of the sheet. Unknowns x: all control points, vertex-major
+/// (x[3 v + c], metres), ghost layer included. The reference (stress-free, ungrown) state is
+/// the limit surface of the control mesh given at construction; it is never modified.
+class ShellModel final : public SparseObjective {
+ public:
+  /// Validates the mesh (see validate_control_mesh), the material and the thickness and
+  /// builds the Hessian pattern. Throws MeshError or std::invalid_argument naming the problem.
+  ShellModel(const TriangleMesh& reference_control_mesh, ShellModelSettings settings);
+
+  /// Sets the excess angle phi_e (radians) of the growth law; recomputes target metrics.
+  void set_excess_angle(double excess_angle);
+  double excess_angle() const { return excess_angle_; }
+
+  Eigen::Index dimension() const override { return 3 * topology_.num_vertices(); }
+  Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) override;
+
+  /// Stretching and bending energy, E_b-hat ingredients and areas at x.
+  ShellEnergyBreakdown energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// d(gradient)/d(phi_e) at x (N/rad), exact.
+  Eigen::VectorXd gradient_excess_angle_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// Mean bending energy density U_b of each element (1/m^2), weighted by grown area.
+  Eigen::VectorXd element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// Mean stretching energy density U_s of each element (dimensionless strain squared).
+  Eigen::VectorXd element_stretching_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// Limit-surface positions (metres) of the element corner vertices, in the order of
+  /// sheet_vertices().
+  Eigen::MatrixX3d limit_positions(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// Vertices that are corners of elements (the sheet proper, ghost layer excluded), sorted.
+  const std::vector<int>& sheet_vertices() const { return sheet_vertices_; }
+  /// Reference control points, flattened like x.
+  const Eigen::VectorXd& reference_positions() const { return reference_x_; }
+  const MeshTopology& topology() const { return topology_; }
+  const ElementPatches& patches() const { return patches_; }
+  const ReferenceQuadrature& reference() const { return reference_; }
+  const ShellModelSettings& settings() const { return settings_; }
+  Eigen::Index num_elements() const { return static_cast<Eigen::Index>(patches_.face.size()); }
+
+  /// Natural force scale Y h^3 / L (N): the nodal force of O(1/L) bending, with h the largest
+  /// thickness and L = sqrt(reference area / pi). Use it to scale force tolerances.
+  double natural_force_scale() const;
+
+ private:
+  /// Coordinates of the 12 control points of element e, node-major (3 i + c).
+  Eigen::Matrix<double, 36, 1> element_coordinates(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                   Eigen::Index e) const;
+  int thread_count() const;
+
+  ShellModelSettings settings_;
+  MeshTopology topology_;
+  ElementPatches patches_;
+  Eigen::VectorXd reference_x_;
+  ReferenceQuadrature reference_;
+  std::vector<int> sheet_vertices_;
+  double excess_angle_ = 0.0;
+  std::vector<Eigen::Matrix2d> target_metric_;  // per quadrature point, at excess_angle_
+  Eigen::SparseMatrix<double> pattern_;
+  // Per-thread scatter buffers, reused across evaluations (no allocation per iteration).
+  std::vector<Eigen::VectorXd> thread_gradient_;
+  std::vector<Eigen::VectorXd> thread_values_;
+};
+
+}  // namespace growshell

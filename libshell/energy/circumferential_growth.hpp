@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// Circumferential growth about an axis: the growth tensor G(phi_e) and the target metric.
+
+#include <Eigen/Core>
+
+namespace growshell {
+
+/// Growth only along circles about `center` (a point of the reference plane z = 0, metres):
+///   G = e_r (x) e_r + lambda e_phi (x) e_phi,  lambda = 1 + phi_e / (2 pi),
+/// which equals inserting a wedge of angle phi_e (the excess angle, radians) into the sheet.
+/// Thickness does not grow. For a curved reference the radial direction is the projection of
+/// X - center onto the tangent plane.
+struct CircumferentialGrowth {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+};
+
+/// Circumferential stretch lambda = 1 + phi_e / (2 pi) (dimensionless).
+double circumferential_stretch(double excess_angle);
+
+/// Target (grown) metric abar_ab = (G A_a) . (G A_b) at reference point X with reference
+/// tangents A = [A_1 A_2] (covariant basis of the parameter coordinates, metres):
+///   abar = A^T A + (lambda^2 - 1) t t^T,  t_a = e_phi . A_a.
+/// At X on the axis (no circumferential direction) the growth is undefined; abar = A^T A there.
+Eigen::Matrix2d target_metric(const CircumferentialGrowth& growth, const Eigen::Vector3d& X,
+                              const Eigen::Matrix<double, 3, 2>& A, double excess_angle);
+
+/// d abar / d phi_e = (lambda / pi) t t^T, same conventions as target_metric.
+Eigen::Matrix2d target_metric_excess_angle_derivative(const CircumferentialGrowth& growth,
+                                                      const Eigen::Vector3d& X,
+                                                      const Eigen::Matrix<double, 3, 2>& A,
+                                                      double excess_angle);
+
+}  // namespace growshell
