@@ -1,0 +1,21 @@
+#pragma once
+/// \file
+/// Checks that a triangle mesh is a usable growshell control mesh.
+
+#include "libshell/mesh/triangle_mesh.hpp"
+
+namespace growshell {
+
+/// Throws MeshError (naming the vertex, face or edge) unless `mesh` is a valid control mesh:
+/// - its connectivity is valid (see MeshTopology: indices in range, no repeated vertex in a
+///   face, manifold edges and vertices, consistent orientation, no unused vertex);
+/// - all coordinates are finite;
+/// - no triangle is degenerate: area > 1e-12 * (mean edge length)^2;
+/// - no triangle is inverted: for a mesh lying in a plane z = const, every signed area in the
+///   xy-plane has the sign of the majority; otherwise no two edge-neighbouring faces have
+///   normals more than 90 degrees apart;
+/// - every interior vertex has valence 6 (growshell's Loop elements are regular patches only);
+/// - at least one element exists (a face whose three vertices are interior).
+void validate_control_mesh(const TriangleMesh& mesh);
+
+}  // namespace growshell

@@ -1,0 +1,207 @@
+// The assembled shell energy: finite-difference checks of gradient, Hessian and
+// d(gradient)/d(phi_e); invariances; closed-form energies of exactly representable states.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/mesh/disc_mesh.hpp"
+
+namespace growshell {
+namespace {
+
+ShellModelSettings settings_with(double h, int quadrature_degree = 2, int threads = 0) {
+  ShellModelSettings s;
+  s.material = {1e4, 0.3};
+  s.thickness = constant_thickness(h);
+  s.quadrature_degree = quadrature_degree;
+  s.threads = threads;
+  return s;
+}
+
+TriangleMesh small_disc(int rings = 3) {
+  DiscMeshOptions o;
+  o.rings = rings;
+  return make_disc_mesh(o);
+}
+
+/// A bent, stretched configuration: a saddle plus random noise on the reference.
+Eigen::VectorXd bent_state(const ShellModel& model, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd x = model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const double X = x(3 * v), Y = x(3 * v + 1);
+    x(3 * v + 2) += 0.3 * (X * X - Y * Y);
+    for (int c = 0; c < 3; ++c) x(3 * v + c) += noise * u(rng);
+  }
+  return x;
+}
+
+// Central differences of the assembled energy with step 1e-6 m on O(1) coordinates: the
+// truncation error is ~1e-12 and the rounding ~1e-16 |E| / 1e-6, both far below the stated
+// 1e-6 relative tolerance, while any wrong or missing term gives O(1) errors.
+constexpr double kStep = 1e-6;
+
+class ShellModelDerivatives : public ::testing::TestWithParam<std::tuple<double, int>> {};
+
+TEST_P(ShellModelDerivatives, GradientHessianAndExcessAngleDerivativeMatchFiniteDifferences) {
+  const auto [h, degree] = GetParam();
+  ShellModel model(small_disc(), settings_with(h, degree));
+  model.set_excess_angle(1.3);
+  const Eigen::VectorXd x = bent_state(model, 0.02, 1);
+  const Eigen::Index n = model.dimension();
+
+  Eigen::VectorXd g;
+  Eigen::SparseMatrix<double> H = model.hessian_pattern();
+  const double E = model.evaluate(x, &g, &H);
+  EXPECT_NEAR(E, model.evaluate(x, nullptr, nullptr), 1e-12 * E);
+  EXPECT_NEAR(E, model.energy_breakdown(x).total(), 1e-12 * E);
+
+  Eigen::VectorXd fd_g(n);
+  Eigen::MatrixXd fd_H(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::VectorXd xp = x, xm = x, gp, gm;
+    xp(i) += kStep;
+    xm(i) -= kStep;
+    const double Ep = model.evaluate(xp, &gp, nullptr);
+    const double Em = model.evaluate(xm, &gm, nullptr);
+    fd_g(i) = (Ep - Em) / (2 * kStep);
+    fd_H.col(i) = (gp - gm) / (2 * kStep);
+  }
+  EXPECT_LE((g - fd_g).norm(), 1e-6 * g.norm());
+  const Eigen::MatrixXd H_dense = Eigen::MatrixXd(H).selfadjointView<Eigen::Upper>();
+  EXPECT_LE((H_dense - fd_H).norm(), 1e-6 * H_dense.norm());
+
+  const Eigen::VectorXd dg = model.gradient_excess_angle_derivative(x);
+  const double dphi = 1e-6;
+  Eigen::VectorXd gp, gm;
+  model.set_excess_angle(1.3 + dphi);
+  model.evaluate(x, &gp, nullptr);
+  model.set_excess_angle(1.3 - dphi);
+  model.evaluate(x, &gm, nullptr);
+  EXPECT_LE((dg - (gp - gm) / (2 * dphi)).norm(), 1e-6 * dg.norm());
+}
+
+INSTANTIATE_TEST_SUITE_P(ThicknessAndQuadrature, ShellModelDerivatives,
+                         ::testing::Combine(::testing::Values(1e-3, 0.04),
+                                            ::testing::Values(1, 2, 6)));
+
+TEST(ShellModel, AssemblyIsIndependentOfThreadCount) {
+  ShellModel one(small_disc(5), settings_with(0.02, 2, 1));
+  ShellModel two(small_disc(5), settings_with(0.02, 2, 2));
+  one.set_excess_angle(2.0);
+  two.set_excess_angle(2.0);
+  const Eigen::VectorXd x = bent_state(one, 0.01, 2);
+  Eigen::VectorXd g1, g2;
+  Eigen::SparseMatrix<double> H1 = one.hessian_pattern(), H2 = two.hessian_pattern();
+  const double E1 = one.evaluate(x, &g1, &H1), E2 = two.evaluate(x, &g2, &H2);
+  // Only the order of the floating-point sums differs.
+  EXPECT_NEAR(E1, E2, 1e-13 * E1);
+  EXPECT_LE((g1 - g2).norm(), 1e-12 * g1.norm());
+  EXPECT_LE((Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(H1.valuePtr(), H1.nonZeros())) -
+             Eigen::Map<Eigen::VectorXd>(H2.valuePtr(), H2.nonZeros()))
+                .norm(),
+            1e-12 * H1.norm());
+}
+
+TEST(ShellModel, RigidMotionsOfTheFlatStateCarryNoEnergyOrForce) {
+  ShellModel model(small_disc(6), settings_with(0.02));
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1.0, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(0.4, -2.0, 3.0);
+  Eigen::VectorXd x = model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) x.segment<3>(3 * v) = R * x.segment<3>(3 * v) + t;
+  Eigen::VectorXd g;
+  const double E = model.evaluate(x, &g, nullptr);
+  // Scales: a unit strain would cost Y h * area ~ 600 J; a 1/R curvature Y h^3 ~ 0.08 J.
+  EXPECT_LT(std::abs(E), 1e-24);
+  EXPECT_LT(g.lpNorm<Eigen::Infinity>(), 1e-10 * model.natural_force_scale());
+}
+
+TEST(ShellModel, EnergyOfABentStateIsInvariantUnderRotation) {
+  ShellModel model(small_disc(5), settings_with(0.02));
+  model.set_excess_angle(2.5);
+  const Eigen::VectorXd x = bent_state(model, 0.01, 3);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(2.2, Eigen::Vector3d(1.0, 1.0, -0.4).normalized()).toRotationMatrix();
+  Eigen::VectorXd y = x;
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) y.segment<3>(3 * v) = R * x.segment<3>(3 * v);
+  Eigen::VectorXd gx, gy;
+  const double Ex = model.evaluate(x, &gx, nullptr), Ey = model.evaluate(y, &gy, nullptr);
+  EXPECT_NEAR(Ex, Ey, 1e-12 * Ex);
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
+    EXPECT_LE((R * gx.segment<3>(3 * v) - gy.segment<3>(3 * v)).norm(), 1e-10 * gx.norm());
+}
+
+TEST(ShellModel, UniformInPlaneStretchGivesTheClosedFormEnergy) {
+  // x = (1 + s) X: eps = e I with e = ((1+s)^2 - 1)/2, U_s = 2 (1 + nu) e^2, exactly
+  // representable, so the only error is rounding.
+  const double h = 0.02, s = 0.03;
+  ShellModel model(small_disc(6), settings_with(h));
+  const Eigen::VectorXd x = (1 + s) * model.reference_positions();
+  const ShellEnergyBreakdown parts = model.energy_breakdown(x);
+  const double e = ((1 + s) * (1 + s) - 1) / 2;
+  const double expected = stretching_modulus(model.settings().material, h) * 2 *
+                          (1 + model.settings().material.poisson_ratio) * e * e *
+                          model.reference().reference_area();
+  EXPECT_NEAR(parts.stretching, expected, 1e-12 * expected);
+  EXPECT_LT(parts.bending, 1e-20);
+  EXPECT_NEAR(parts.current_area, (1 + s) * (1 + s) * model.reference().reference_area(),
+              1e-12);
+}
+
+TEST(ShellModel, FlatDiscGrownButNotRelaxedGivesTheClosedFormEnergy) {
+  // At the reference positions the metric is A while abar = diag(1, lambda^2) in the polar
+  // frame: eps has eigenvalues 0 and (1/lambda^2 - 1)/2, so U_s = eps_t^2 and the grown
+  // measure is lambda times the reference area.
+  const double h = 0.02;
+  for (double phi : {0.5, 3.0, 4 * std::numbers::pi}) {
+    ShellModel model(small_disc(6), settings_with(h));
+    model.set_excess_angle(phi);
+    const double lambda = 1 + phi / (2 * std::numbers::pi);
+    const double eps_t = 0.5 * (1 / (lambda * lambda) - 1);
+    const ShellEnergyBreakdown parts = model.energy_breakdown(model.reference_positions());
+    const double area = model.reference().reference_area();
+    const double expected =
+        stretching_modulus(model.settings().material, h) * eps_t * eps_t * lambda * area;
+    EXPECT_NEAR(parts.stretching, expected, 1e-12 * expected) << "phi_e = " << phi;
+    EXPECT_NEAR(parts.grown_area, lambda * area, 1e-12 * area);
+  }
+}
+
+TEST(ShellModel, BadInputIsRejectedWithTheOffendingValueNamed) {
+  ShellModelSettings s = settings_with(0.02);
+  s.material.poisson_ratio = 0.5;
+  try {
+    ShellModel model(small_disc(), s);
+    FAIL() << "nu = 0.5 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("poisson_ratio"), std::string::npos) << e.what();
+  }
+  s = settings_with(0.0);
+  try {
+    ShellModel model(small_disc(), s);
+    FAIL() << "h = 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("thickness"), std::string::npos) << e.what();
+  }
+  s = settings_with(0.02);
+  s.thickness = [](const Eigen::Vector3d& X) { return X.x() > 0.5 ? -1.0 : 0.02; };
+  EXPECT_THROW(ShellModel(small_disc(), s), std::invalid_argument);
+  ShellModel model(small_disc(), settings_with(0.02));
+  EXPECT_THROW(model.set_excess_angle(std::nan("")), std::invalid_argument);
+  EXPECT_THROW(model.evaluate(Eigen::VectorXd::Zero(5), nullptr, nullptr), std::invalid_argument);
+}
+
+TEST(ShellModel, DegenerateConfigurationGivesNonFiniteEnergyNotACrash) {
+  ShellModel model(small_disc(), settings_with(0.02));
+  const Eigen::VectorXd collapsed = Eigen::VectorXd::Zero(model.dimension());
+  EXPECT_FALSE(std::isfinite(model.evaluate(collapsed, nullptr, nullptr)));
+}
+
+}  // namespace
+}  // namespace growshell
