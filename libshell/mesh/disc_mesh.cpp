@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <sstream>
 #include <string>
 
+#include "libshell/mesh/hexagon_disc_map.hpp"
 #include "libshell/mesh/mesh_error.hpp"
 
 namespace growshell {
@@ -24,51 +26,73 @@ void check_center(const std::string& generator, const Eigen::Vector2d& center) {
   }
 }
 
-// First vertex index of ring k of the full hexagonal ring lattice (ring 0 = centre vertex).
+// First vertex index of ring k of the hexagonal ring lattice (ring 0 = centre vertex).
 long ring_start(int k) { return k == 0 ? 0 : 1 + 3L * k * (k - 1); }
 
-// Builds rings first..last of the hexagonal ring lattice, ring k at radius radii[k - first]
-// (vertex m at angle 2 pi m / 6k), with the triangles between consecutive rings.
-TriangleMesh ring_lattice(int first, int last, const std::vector<double>& radii,
-                          const Eigen::Vector2d& center) {
-  const long base = ring_start(first);
-  const long nv = ring_start(last + 1) - base;
-  TriangleMesh mesh;
-  mesh.vertices.resize(nv, 3);
-  for (int k = first; k <= last; ++k) {
-    const double r = radii[k - first];
-    const int count = k == 0 ? 1 : 6 * k;
-    for (int m = 0; m < count; ++m) {
-      const double angle = k == 0 ? 0.0 : 2.0 * std::numbers::pi * m / count;
-      const long v = ring_start(k) - base + m;
-      mesh.vertices.row(v) << center.x() + r * std::cos(angle), center.y() + r * std::sin(angle),
-          0.0;
-    }
-  }
-  auto vertex = [&](int k, int m) {
-    if (k == 0) return static_cast<int>(-base);
-    return static_cast<int>(ring_start(k) - base + ((m % (6 * k)) + 6 * k) % (6 * k));
+// Triangles of the hexagonal ring lattice with rings 0..last.
+Eigen::MatrixX3i ring_lattice_faces(int last) {
+  auto vertex = [](int k, int m) {
+    if (k == 0) return 0;
+    return static_cast<int>(ring_start(k) + ((m % (6 * k)) + 6 * k) % (6 * k));
   };
-  long nf = 0;
-  for (int k = first + 1; k <= last; ++k) nf += 6L * (2 * k - 1);
-  mesh.faces.resize(nf, 3);
+  Eigen::MatrixX3i faces(6L * last * last, 3);
   long f = 0;
   // Between rings k-1 and k each of the six sides s holds k triangles pointing outwards and
   // k-1 pointing inwards; this is exactly the triangular lattice, so every vertex strictly
   // inside has valence 6.
-  for (int k = first + 1; k <= last; ++k) {
+  for (int k = 1; k <= last; ++k) {
     for (int s = 0; s < 6; ++s) {
       for (int j = 0; j < k; ++j) {
         const int inner = vertex(k - 1, s * (k - 1) + j);
-        mesh.faces.row(f++) << inner, vertex(k, s * k + j), vertex(k, s * k + j + 1);
+        faces.row(f++) << inner, vertex(k, s * k + j), vertex(k, s * k + j + 1);
         if (j + 1 < k) {
-          mesh.faces.row(f++) << inner, vertex(k, s * k + j + 1),
-              vertex(k - 1, s * (k - 1) + j + 1);
+          faces.row(f++) << inner, vertex(k, s * k + j + 1), vertex(k - 1, s * (k - 1) + j + 1);
         }
       }
     }
   }
-  return mesh;
+  return faces;
+}
+
+// Lattice hexagon -> unit disc of make_disc_mesh's conformal layout: w for every lattice
+// vertex of rings 0..N+1, in the numbering of ring_lattice_faces.
+std::vector<std::complex<double>> conformal_disc_points(int N) {
+  using Complex = std::complex<double>;
+  std::vector<Complex> w(ring_start(N + 2));
+  w[0] = 0.0;
+  const Complex c1 = std::polar(1.0, std::numbers::pi / 3.0);
+  // Only side 0 is mapped; the other sides are its rotations, which makes the mesh exactly
+  // (to rounding) symmetric and costs a sixth of the map evaluations.
+  std::vector<Complex> side(N + 2);
+  for (int k = 1; k <= N + 1; ++k) {
+    for (int j = 0; j < k; ++j) {
+      const Complex xi = static_cast<double>(k) + static_cast<double>(j) * (c1 - 1.0);
+      Complex g = hexagon_to_disc(xi / static_cast<double>(N));
+      // The side maps onto the unit circle; remove the map's last-digit error there.
+      if (k == N) g /= std::abs(g);
+      side[j] = g;
+    }
+    if (k == N + 1) {
+      // At a rim corner the map opens the 120-degree hexagon angle to 180 degrees
+      // (g ~ 1 - (1 - z)^(3/2)), so its continuation wraps the 240 degrees outside the
+      // corner onto a full turn: the ghost corner lands on the circle's tangent and both
+      // ghost neighbours of the ghost corner on the same point 1 / conj(g((N-1)/N)), which
+      // makes the ghost faces at the corner degenerate. These ghost vertices instead continue
+      // a lattice line through ring N linearly: ghost = 2 (ring N vertex) - (ring N-1 vertex)
+      // along the lattice direction 1 (ghost corner, ghost j = 1) or c1 (ghost j = N, next
+      // to the ghost corner c1 (N + 1): the mirror image of side 1's ghost j = 1).
+      auto g = [&](Complex lattice) { return hexagon_to_disc(lattice / static_cast<double>(N)); };
+      const double n = N;
+      side[0] = 2.0 - w[ring_start(N - 1)];
+      side[1] = 2.0 * g(n - 1.0 + c1) - g(n - 2.0 + c1);
+      side[N] = 2.0 * g(1.0 + (n - 1.0) * c1) - g(1.0 + (n - 2.0) * c1);
+    }
+    for (int s = 0; s < 6; ++s) {
+      const Complex rot = s == 0 ? Complex(1.0) : std::polar(1.0, s * std::numbers::pi / 3.0);
+      for (int j = 0; j < k; ++j) w[ring_start(k) + s * k + j] = rot * side[j];
+    }
+  }
+  return w;
 }
 
 }  // namespace
@@ -79,6 +103,7 @@ TriangleMesh make_disc_mesh(const DiscMeshOptions& options) {
   const double p = options.grading_exponent;
   if (!(std::isfinite(R) && R > 0.0)) bad_option("disc radius", R, "finite and > 0");
   if (N < 2) bad_option("disc rings", N, ">= 2");
+  if (N > 10000) bad_option("disc rings", N, "<= 10000");
   if (!(std::isfinite(p) && p >= 1.0)) bad_option("disc grading_exponent", p, "finite and >= 1");
   if (!(std::isfinite(options.min_spacing) && options.min_spacing >= 0.0)) {
     bad_option("disc min_spacing", options.min_spacing, "finite and >= 0");
@@ -86,17 +111,38 @@ TriangleMesh make_disc_mesh(const DiscMeshOptions& options) {
   check_center("disc", options.center);
 
   const double a = p == 1.0 ? 1.0 : std::clamp(options.min_spacing * N / R, 0.0, 1.0);
-  std::vector<double> radii(N + 2);
-  for (int k = 0; k <= N; ++k) {
-    const double s = static_cast<double>(k) / N;
-    radii[k] = R * (a * s + (1.0 - a) * std::pow(s, p));
+  auto sigma = [&](double rho) { return a * rho + (1.0 - a) * std::pow(rho, p); };
+  TriangleMesh mesh;
+  mesh.vertices.resize(ring_start(N + 2), 3);
+  const Eigen::Vector2d& c = options.center;
+  if (options.layout == DiscLayout::Conformal) {
+    const std::vector<std::complex<double>> w = conformal_disc_points(N);
+    for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
+      const double rho = std::abs(w[v]);
+      // sigma(1) = 1 up to rounding; ring N must stay exactly on the circle.
+      const double factor = rho == 0.0 ? 0.0 : (rho == 1.0 ? 1.0 : sigma(rho) / rho);
+      mesh.vertices.row(v) << c.x() + R * factor * w[v].real(), c.y() + R * factor * w[v].imag(),
+          0.0;
+    }
+  } else {
+    std::vector<double> radii(N + 2);
+    for (int k = 0; k <= N; ++k) radii[k] = R * sigma(static_cast<double>(k) / N);
+    radii[N] = R;  // exact, whatever the rounding of the formula
+    radii[N + 1] = R + (radii[N] - radii[N - 1]);
+    mesh.vertices.row(0) << c.x(), c.y(), 0.0;
+    for (int k = 1; k <= N + 1; ++k) {
+      for (int m = 0; m < 6 * k; ++m) {
+        const double angle = 2.0 * std::numbers::pi * m / (6 * k);
+        mesh.vertices.row(ring_start(k) + m) << c.x() + radii[k] * std::cos(angle),
+            c.y() + radii[k] * std::sin(angle), 0.0;
+      }
+    }
   }
-  radii[N] = R;  // exact, whatever the rounding of the formula
-  radii[N + 1] = R + (radii[N] - radii[N - 1]);
-  return ring_lattice(0, N + 1, radii, options.center);
+  mesh.faces = ring_lattice_faces(N + 1);
+  return mesh;
 }
 
-int annulus_first_ring(const AnnulusMeshOptions& options) {
+int annulus_vertices_per_ring(const AnnulusMeshOptions& options) {
   const double Ri = options.inner_radius;
   const double R = options.outer_radius;
   if (!(std::isfinite(Ri) && Ri > 0.0)) {
@@ -106,33 +152,45 @@ int annulus_first_ring(const AnnulusMeshOptions& options) {
     bad_option("annulus outer_radius", R, "finite and > inner_radius");
   }
   if (options.radial_layers < 1) bad_option("annulus radial_layers", options.radial_layers, ">= 1");
-  const double dr = (R - Ri) / options.radial_layers;
-  // Tangential spacing 2 pi Ri / (6K) equals dr at K* = pi Ri / (3 dr); the closest of the two
-  // integers around K* wins, comparing spacings rather than K.
-  const double k_star = std::numbers::pi * Ri / (3.0 * dr);
-  if (!(k_star < 1e6)) {
-    bad_option("annulus inner_radius / radial spacing", Ri / dr,
-               "small enough that the inner ring needs fewer than 6e6 vertices");
+  const double dl = std::log(R / Ri) / options.radial_layers;
+  const double m = std::round(2.0 * std::numbers::pi / dl);
+  if (!(m <= 1e6)) {
+    bad_option("annulus radial_layers / ln(outer_radius / inner_radius)", 1.0 / dl,
+               "small enough that a ring needs at most 1e6 vertices (2 pi / step <= 1e6)");
   }
-  const int lo = std::max(2, static_cast<int>(std::floor(k_star)));
-  const int hi = std::max(2, lo + 1);
-  auto mismatch = [&](int k) { return std::abs(2.0 * std::numbers::pi * Ri / (6.0 * k) - dr); };
-  return mismatch(hi) < mismatch(lo) ? hi : lo;
+  return std::max(6, static_cast<int>(m));
 }
 
 TriangleMesh make_annulus_mesh(const AnnulusMeshOptions& options) {
-  const int K = annulus_first_ring(options);
+  const int M = annulus_vertices_per_ring(options);
   check_center("annulus", options.center);
   const double Ri = options.inner_radius;
   const double R = options.outer_radius;
   const int L = options.radial_layers;
-  const double dr = (R - Ri) / L;
-  std::vector<double> radii(L + 3);
-  radii[0] = Ri - dr > 0.0 ? Ri - dr : 0.5 * Ri;
-  for (int i = 0; i <= L; ++i) radii[i + 1] = Ri + i * dr;
-  radii[L + 1] = R;
-  radii[L + 2] = R + dr;
-  return ring_lattice(K - 1, K + L + 1, radii, options.center);
+  const double dl = std::log(R / Ri) / L;
+  auto index = [&](int j, int i) { return (j + 1) * M + (i % M); };
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(M) * (L + 3), 3);
+  for (int j = -1; j <= L + 1; ++j) {
+    // Rings 0 and L exactly at R_i and R, whatever the rounding of exp.
+    const double r = j == 0 ? Ri : (j == L ? R : Ri * std::exp(j * dl));
+    for (int i = 0; i < M; ++i) {
+      const double angle = 2.0 * std::numbers::pi * i / M;
+      mesh.vertices.row(index(j, i)) << options.center.x() + r * std::cos(angle),
+          options.center.y() + r * std::sin(angle), 0.0;
+    }
+  }
+  // (log r, angle) -> plane is conformal and orientation preserving, so triangles
+  // counter-clockwise in the (j, i) grid stay counter-clockwise.
+  mesh.faces.resize(2 * static_cast<Eigen::Index>(M) * (L + 2), 3);
+  Eigen::Index f = 0;
+  for (int j = -1; j <= L; ++j) {
+    for (int i = 0; i < M; ++i) {
+      mesh.faces.row(f++) << index(j, i), index(j + 1, i), index(j + 1, i + 1);
+      mesh.faces.row(f++) << index(j, i), index(j + 1, i + 1), index(j, i + 1);
+    }
+  }
+  return mesh;
 }
 
 int strip_vertex_index(const StripMeshOptions& options, int i, int j) {

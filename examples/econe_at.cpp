@@ -1,0 +1,207 @@
+// econe_at: grow a flat disc to a given excess angle and write the e-cone found there.
+//
+// A flat disc with a small, seeded, smooth out-of-plane perturbation is grown in small
+// steps of the excess angle phi_e; at each step Newton's method (sparse Cholesky, line
+// search) finds the equilibrium, starting from the previous one. A converged state whose
+// Hessian is not positive definite is a saddle (the flat disc past its buckling threshold):
+// it is perturbed again and re-minimised, so each reported state is a stable equilibrium.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "examples/support/command_line.hpp"
+#include "libshell/analysis/rim_folds.hpp"
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/io/shell_snapshot.hpp"
+#include "libshell/io/vtk_writer.hpp"
+#include "libshell/mesh/disc_mesh.hpp"
+#include "solvers/newton/newton_solver.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+#include "solvers/stability/positive_definiteness.hpp"
+
+namespace {
+
+using namespace growshell;
+
+const char* kUsage = R"(usage: econe_at [options]
+  --h H              thickness (default 0.02, units of R)
+  --phi PHI          target excess angle phi_e in radians (default 3.73)
+  --step DPHI        largest step in phi_e (default 0.1)
+  --rings N          mesh rings (default 24)
+  --grading P        radial grading exponent, 1 = uniform (default 3)
+  --min-spacing S    smallest radial spacing at the centre (default h/2)
+  --quadrature D     quadrature degree 1..6 (default 2)
+  --nu NU            Poisson ratio (default 0.3)
+  --youngs Y         Young's modulus in Pa (default 1e4)
+  --seed S           seed of the initial perturbation (default 1)
+  --amplitude A      perturbation amplitude in units of R (default 1e-3)
+  --tolerance T      force tolerance relative to Y h^3 / R (default 1e-7)
+  --energy-tolerance E  Newton-decrement tolerance relative to Y h^3 R^2 (default 1e-10)
+  --out DIR          output directory (default out/econe)
+  --verbose 1        print every Newton iteration
+)";
+
+/// Uniform number in [-1, 1) from the generator's raw output (portable across libraries).
+double uniform(std::mt19937& rng) { return 2.0 * (rng() / 4294967296.0) - 1.0; }
+
+/// Smooth out-of-plane perturbation, mirror-symmetric about the x-axis (a mirror axis of the
+/// mesh): sum over m = 1..4 of (r/R)^m a_m cos(m t). Keeping that symmetry fixes the
+/// orientation of the fold pattern, which the axisymmetric continuum leaves free and the
+/// six-fold mesh selects only through a nearly zero stiffness (docs/verification.md).
+Eigen::VectorXd perturbation(const ShellModel& model, double amplitude, std::mt19937& rng,
+                             double radius) {
+  double a[5];
+  for (int m = 1; m <= 4; ++m) a[m] = uniform(rng);
+  const Eigen::VectorXd& X = model.reference_positions();
+  Eigen::VectorXd dz = Eigen::VectorXd::Zero(X.size());
+  for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
+    const double r = std::hypot(X(3 * v), X(3 * v + 1)) / radius;
+    const double t = std::atan2(X(3 * v + 1), X(3 * v));
+    double z = 0.0;
+    for (int m = 1; m <= 4; ++m) z += std::pow(r, m) * a[m] * std::cos(m * t);
+    dz(3 * v + 2) = amplitude * radius * z;
+  }
+  return dz;
+}
+
+int run(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they are made
+  examples::CommandLine cl(argc, argv);
+  if (cl.help()) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const double h = cl.number("--h", 0.02);
+  const double phi_target = cl.number("--phi", 3.73);
+  const double max_step = cl.number("--step", 0.1);
+  DiscMeshOptions mesh_options;
+  mesh_options.radius = 1.0;
+  mesh_options.rings = cl.integer("--rings", 24);
+  mesh_options.grading_exponent = cl.number("--grading", 3.0);
+  mesh_options.min_spacing = cl.number("--min-spacing", h / 2);
+  ShellModelSettings settings;
+  settings.material.poisson_ratio = cl.number("--nu", 0.3);
+  settings.material.youngs_modulus = cl.number("--youngs", 1e4);
+  settings.quadrature_degree = cl.integer("--quadrature", 2);
+  settings.thickness = constant_thickness(h);
+  const int seed = cl.integer("--seed", 1);
+  const double amplitude = cl.number("--amplitude", 1e-3);
+  const double rtol = cl.number("--tolerance", 1e-7);
+  const double etol = cl.number("--energy-tolerance", 1e-10);
+  const std::string out_dir = cl.text("--out", "out/econe");
+  const bool verbose = cl.integer("--verbose", 0) != 0;
+  cl.reject_unknown();
+  if (!(h > 0.0)) throw std::invalid_argument("--h must be > 0");
+  if (!(phi_target >= 0.0)) throw std::invalid_argument("--phi must be >= 0");
+  if (!(max_step > 0.0)) throw std::invalid_argument("--step must be > 0");
+
+  std::filesystem::create_directories(out_dir);
+  ShellModel model(make_disc_mesh(mesh_options), settings);
+  std::printf("# disc R = 1, h = %g, %lld elements, %lld unknowns, Y = %g, nu = %g\n", h,
+              static_cast<long long>(model.num_elements()),
+              static_cast<long long>(model.dimension()), settings.material.youngs_modulus,
+              settings.material.poisson_ratio);
+
+  const Eigen::MatrixX3d positions = Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
+      model.reference_positions().data(), model.dimension() / 3, 3);
+  // Rigid motions are removed by pinning the centre and two rim points on the mesh's mirror
+  // axes at 0 and 90 degrees, so that the pins respect the mirror symmetry of the states.
+  int rim_x = model.sheet_vertices().front(), rim_y = rim_x;
+  for (int v : model.sheet_vertices()) {
+    if (positions(v, 0) > positions(rim_x, 0)) rim_x = v;
+    if (positions(v, 1) > positions(rim_y, 1)) rim_y = v;
+  }
+  const std::vector<Eigen::Index> pinned =
+      rigid_motion_pinned_dofs(positions, {model.sheet_vertices().front(), rim_x, rim_y});
+  NewtonOptions newton_options;
+  newton_options.gradient_tolerance = rtol * model.natural_force_scale();
+  newton_options.decrement_tolerance = etol * settings.material.youngs_modulus * h * h * h;
+  NewtonSolver newton(newton_options);
+
+  std::mt19937 rng(static_cast<std::uint32_t>(seed));
+  Eigen::VectorXd x = model.reference_positions() + perturbation(model, amplitude, rng, 1.0);
+  Eigen::VectorXd last_good = x;
+  double phi = 0.0;
+  std::ofstream steps(out_dir + "/steps.csv");
+  steps << "phi_e,E_stretch,E_bend,Eb_hat,area,newton_iterations,folds,perturbations\n";
+  std::printf("%8s %13s %13s %11s %6s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat", "iters",
+              "folds");
+  auto write_state = [&](const Eigen::VectorXd& state, const std::string& name) {
+    write_vtu(out_dir + "/" + name, shell_snapshot(model, state, 2));
+  };
+
+  double step = std::min(max_step, phi_target);
+  while (phi < phi_target) {
+    const double next = std::min(phi + step, phi_target);
+    model.set_excess_angle(next);
+    const auto log_iteration = [verbose](const NewtonIterate& it) {
+      if (verbose)
+        std::printf("    newton %3d  E %.12e  |g| %.3e  alpha %.3g  |dx| %.3e  shift %.3e\n",
+                    it.iteration, it.energy, it.gradient_inf_norm, it.step_length,
+                    it.step_inf_norm, it.shift);
+    };
+    NewtonResult result = newton.minimize(model, x, pinned, log_iteration);
+    int perturbations = 0;
+    while (result.converged() && !hessian_is_positive_definite(model, result.x, pinned) &&
+           perturbations < 5) {
+      ++perturbations;
+      result = newton.minimize(model, result.x + perturbation(model, amplitude, rng, 1.0), pinned,
+                               log_iteration);
+    }
+    if (!result.converged() || perturbations == 5) {
+      if (step < 1e-4) {
+        write_state(last_good, "last_converged.vtu");
+        std::fprintf(stderr,
+                     "error: no stable equilibrium at phi_e = %.6g (%s); the last converged state "
+                     "(phi_e = %.6g) is in %s/last_converged.vtu\n",
+                     next, result.message.c_str(), phi, out_dir.c_str());
+        return 3;
+      }
+      step /= 2;
+      model.set_excess_angle(phi);
+      continue;
+    }
+    phi = next;
+    x = result.x;
+    last_good = x;
+    const ShellEnergyBreakdown parts = model.energy_breakdown(x);
+    const int folds = analyze_rim_folds(model, x).folds;
+    std::printf("%8.4f %13.6e %13.6e %11.6f %6d %5d%s\n", phi, parts.stretching, parts.bending,
+                parts.normalized_bending(), result.iterations, folds,
+                perturbations ? "  (saddle left by perturbation)" : "");
+    steps << phi << ',' << parts.stretching << ',' << parts.bending << ','
+          << parts.normalized_bending() << ',' << parts.current_area << ',' << result.iterations
+          << ',' << folds << ',' << perturbations << '\n';
+    steps.flush();
+    step = std::min(max_step, 1.5 * step);
+  }
+
+  const ShellEnergyBreakdown parts = model.energy_breakdown(x);
+  const RimFoldAnalysis rim = analyze_rim_folds(model, x);
+  write_state(x, "econe.vtu");
+  std::printf("\nphi_e            %.6f\n", phi);
+  std::printf("E_stretch        %.9e J\n", parts.stretching);
+  std::printf("E_bend           %.9e J\n", parts.bending);
+  std::printf("Eb_hat           %.9f (integral of U_b / area, 1/R^2)\n", parts.normalized_bending());
+  std::printf("folds            %d (rim mode amplitudes m=2: %.4g, m=3: %.4g)\n", rim.folds,
+              rim.mode_amplitudes(2), rim.mode_amplitudes(3));
+  std::printf("wrote            %s/econe.vtu, %s/steps.csv\n", out_dir.c_str(), out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "econe_at: error: %s\n", e.what());
+    return 2;
+  }
+}

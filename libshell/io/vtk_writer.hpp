@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// Writing triangle surfaces with per-cell and per-point data as VTK XML files for ParaView.
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace growshell {
+
+/// A triangulated surface with named scalar fields.
+struct SurfaceSnapshot {
+  Eigen::MatrixX3d points;     ///< one row per point (metres)
+  Eigen::MatrixX3i triangles;  ///< point indices, counter-clockwise
+  std::vector<std::pair<std::string, Eigen::VectorXd>> cell_data;   ///< one value per triangle
+  std::vector<std::pair<std::string, Eigen::VectorXd>> point_data;  ///< one value per point
+};
+
+/// Writes `snapshot` as a VTK XML unstructured grid (.vtu, ASCII, full double precision).
+/// Throws std::invalid_argument for a field of the wrong length and std::runtime_error if the
+/// file cannot be written (naming the path).
+void write_vtu(const std::string& path, const SurfaceSnapshot& snapshot);
+
+/// One entry of a ParaView collection: a time value and a file name relative to the .pvd.
+struct CollectionEntry {
+  double time;
+  std::string file;
+};
+
+/// Writes a ParaView .pvd collection listing `entries` (e.g. one VTU per continuation step,
+/// with phi_e as the time value). Throws std::runtime_error if the file cannot be written.
+void write_pvd(const std::string& path, const std::vector<CollectionEntry>& entries);
+
+}  // namespace growshell

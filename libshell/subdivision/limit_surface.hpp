@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// Evaluation of the limit surface of a regular Loop patch: position, tangents, second
+/// derivatives, unit normal and curvatures.
+
+#include <Eigen/Core>
+#include <array>
+
+namespace growshell {
+
+/// The limit surface at one parameter point of one element (SI units, metres).
+struct LimitSurfacePoint {
+  Eigen::Vector3d position;
+  Eigen::Matrix<double, 3, 2> tangents;  ///< [a_1 a_2] = dx/dv, dx/dw
+  Eigen::Matrix<double, 3, 3> second;    ///< [a_11 a_22 a_12]
+  Eigen::Vector3d normal;                ///< (a_1 x a_2) / |a_1 x a_2|
+  Eigen::Matrix2d metric;                ///< a_ab
+  Eigen::Matrix2d curvature_tensor;      ///< b_ab = a_ab . n (covariant, 1/m times m^2)
+  double mean_curvature;      ///< H = tr(a^-1 b) / 2, sign from the normal (1/m)
+  double gaussian_curvature;  ///< K = det b / det a (1/m^2)
+};
+
+/// Evaluates the limit surface of the patch `control` (12 vertex indices into `positions`,
+/// one row per vertex) at parameter (v, w) of the element triangle.
+LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                         const std::array<int, 12>& control, double v, double w);
+
+}  // namespace growshell

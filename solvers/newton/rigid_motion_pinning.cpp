@@ -1,0 +1,89 @@
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace growshell {
+namespace {
+
+// Below this ratio of the best triangle area to |B - A|^2 / 2 the third pin would control
+// the rotation about AB only through a near-zero lever arm.
+constexpr double kCollinearityTolerance = 1e-6;
+
+int dominant_component(const Eigen::Vector3d& v) {
+  int k = 0;
+  v.cwiseAbs().maxCoeff(&k);
+  return k;
+}
+
+}  // namespace
+
+std::vector<Eigen::Index> rigid_motion_pinned_dofs(
+    const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+    const std::vector<int>& candidate_vertices) {
+  if (candidate_vertices.size() < 3) {
+    throw std::invalid_argument(
+        "rigid_motion_pinned_dofs: need at least 3 candidate vertices, got " +
+        std::to_string(candidate_vertices.size()));
+  }
+  for (const int v : candidate_vertices) {
+    if (v < 0 || v >= positions.rows()) {
+      throw std::invalid_argument("rigid_motion_pinned_dofs: candidate vertex " +
+                                  std::to_string(v) + " is out of range [0, " +
+                                  std::to_string(positions.rows()) + ")");
+    }
+    if (!positions.row(v).allFinite()) {
+      throw std::invalid_argument("rigid_motion_pinned_dofs: candidate vertex " +
+                                  std::to_string(v) + " has a non-finite position");
+    }
+  }
+  const int a = candidate_vertices.front();
+  const Eigen::Vector3d pa = positions.row(a).transpose();
+
+  int b = a;
+  double best_distance = 0.0;
+  for (const int v : candidate_vertices) {
+    const double d = (positions.row(v).transpose() - pa).squaredNorm();
+    if (d > best_distance) {
+      best_distance = d;
+      b = v;
+    }
+  }
+  const Eigen::Vector3d ab = positions.row(b).transpose() - pa;
+
+  int c = a;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (const int v : candidate_vertices) {
+    const Eigen::Vector3d n = ab.cross(positions.row(v).transpose() - pa);
+    if (n.squaredNorm() > normal.squaredNorm()) {
+      normal = n;
+      c = v;
+    }
+  }
+  if (!(normal.norm() > kCollinearityTolerance * ab.squaredNorm()) || best_distance == 0.0) {
+    throw std::invalid_argument(
+        "rigid_motion_pinned_dofs: the " + std::to_string(candidate_vertices.size()) +
+        " candidate vertices are (nearly) collinear (largest |(B-A)x(C-A)| = " +
+        std::to_string(normal.norm()) + " with |B-A|^2 = " + std::to_string(ab.squaredNorm()) +
+        "); rotations about their line cannot be removed");
+  }
+
+  // With A fixed, a rigid velocity is w x (p - A). Zeroing the two components of w x (B - A)
+  // transverse to its dominant axis forces w parallel to B - A (w x (B - A) is orthogonal to
+  // B - A); the remaining spin about AB moves C along the normal, so pinning C's dominant
+  // normal component removes it.
+  const int kb = dominant_component(ab);
+  const int kc = dominant_component(normal);
+  std::vector<Eigen::Index> dofs;
+  dofs.reserve(6);
+  for (int k = 0; k < 3; ++k) dofs.push_back(3 * static_cast<Eigen::Index>(a) + k);
+  for (int k = 0; k < 3; ++k) {
+    if (k != kb) dofs.push_back(3 * static_cast<Eigen::Index>(b) + k);
+  }
+  dofs.push_back(3 * static_cast<Eigen::Index>(c) + kc);
+  return dofs;
+}
+
+}  // namespace growshell
