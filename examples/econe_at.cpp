@@ -2,9 +2,9 @@
 //
 // A flat disc with a small, seeded, smooth out-of-plane perturbation is grown in small
 // steps of the excess angle phi_e; at each step Newton's method (sparse Cholesky, line
-// search) finds the equilibrium, starting from the previous one. A converged state whose
-// Hessian is not positive definite is a saddle (the flat disc past its buckling threshold):
-// it is perturbed again and re-minimised, so each reported state is a stable equilibrium.
+// search) finds the equilibrium from a tangent predictor (grow_along_path). A converged state
+// whose Hessian is not positive definite is a saddle (the flat disc past its buckling
+// threshold): it is perturbed again and re-minimised, so each reported state is stable.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -23,7 +23,7 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
-#include "solvers/stability/positive_definiteness.hpp"
+#include "solvers/continuation/growth_path.hpp"
 
 namespace {
 
@@ -42,7 +42,7 @@ const char* kUsage = R"(usage: econe_at [options]
   --seed S           seed of the initial perturbation (default 1)
   --amplitude A      perturbation amplitude in units of R (default 1e-3)
   --tolerance T      force tolerance relative to Y h^3 / R (default 1e-7)
-  --energy-tolerance E  Newton-decrement tolerance relative to Y h^3 R^2 (default 1e-10)
+  --energy-tolerance E  Newton-decrement tolerance relative to Y h^3 R^2 (default 1e-6)
   --out DIR          output directory (default out/econe)
   --verbose 1        print every Newton iteration
 )";
@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
   const int seed = cl.integer("--seed", 1);
   const double amplitude = cl.number("--amplitude", 1e-3);
   const double rtol = cl.number("--tolerance", 1e-7);
-  const double etol = cl.number("--energy-tolerance", 1e-10);
+  const double etol = cl.number("--energy-tolerance", 1e-6);
   const std::string out_dir = cl.text("--out", "out/econe");
   const bool verbose = cl.integer("--verbose", 0) != 0;
   cl.reject_unknown();
@@ -125,66 +125,50 @@ int run(int argc, char** argv) {
   NewtonSolver newton(newton_options);
 
   std::mt19937 rng(static_cast<std::uint32_t>(seed));
-  Eigen::VectorXd x = model.reference_positions() + perturbation(model, amplitude, rng, 1.0);
-  Eigen::VectorXd last_good = x;
-  double phi = 0.0;
+  const Eigen::VectorXd x_start =
+      model.reference_positions() + perturbation(model, amplitude, rng, 1.0);
   std::ofstream steps(out_dir + "/steps.csv");
+  if (!steps) throw std::runtime_error("cannot write " + out_dir + "/steps.csv");
   steps << "phi_e,E_stretch,E_bend,Eb_hat,area,newton_iterations,folds,perturbations\n";
+  steps.precision(12);
   std::printf("%8s %13s %13s %11s %6s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat", "iters",
               "folds");
-  auto write_state = [&](const Eigen::VectorXd& state, const std::string& name) {
-    write_vtu(out_dir + "/" + name, shell_snapshot(model, state, 2));
-  };
-
-  double step = std::min(max_step, phi_target);
-  while (phi < phi_target) {
-    const double next = std::min(phi + step, phi_target);
-    model.set_excess_angle(next);
-    const auto log_iteration = [verbose](const NewtonIterate& it) {
-      if (verbose)
-        std::printf("    newton %3d  E %.12e  |g| %.3e  alpha %.3g  |dx| %.3e  shift %.3e\n",
-                    it.iteration, it.energy, it.gradient_inf_norm, it.step_length,
-                    it.step_inf_norm, it.shift);
-    };
-    NewtonResult result = newton.minimize(model, x, pinned, log_iteration);
-    int perturbations = 0;
-    while (result.converged() && !hessian_is_positive_definite(model, result.x, pinned) &&
-           perturbations < 5) {
-      ++perturbations;
-      result = newton.minimize(model, result.x + perturbation(model, amplitude, rng, 1.0), pinned,
-                               log_iteration);
-    }
-    if (!result.converged() || perturbations == 5) {
-      if (step < 1e-4) {
-        write_state(last_good, "last_converged.vtu");
-        std::fprintf(stderr,
-                     "error: no stable equilibrium at phi_e = %.6g (%s); the last converged state "
-                     "(phi_e = %.6g) is in %s/last_converged.vtu\n",
-                     next, result.message.c_str(), phi, out_dir.c_str());
-        return 3;
-      }
-      step /= 2;
-      model.set_excess_angle(phi);
-      continue;
-    }
-    phi = next;
-    x = result.x;
-    last_good = x;
-    const ShellEnergyBreakdown parts = model.energy_breakdown(x);
-    const int folds = analyze_rim_folds(model, x).folds;
-    std::printf("%8.4f %13.6e %13.6e %11.6f %6d %5d%s\n", phi, parts.stretching, parts.bending,
-                parts.normalized_bending(), result.iterations, folds,
-                perturbations ? "  (saddle left by perturbation)" : "");
-    steps << phi << ',' << parts.stretching << ',' << parts.bending << ','
-          << parts.normalized_bending() << ',' << parts.current_area << ',' << result.iterations
-          << ',' << folds << ',' << perturbations << '\n';
+  const auto on_point = [&](const GrowthPathPoint& p) {
+    const ShellEnergyBreakdown parts = model.energy_breakdown(p.x);
+    const int folds = analyze_rim_folds(model, p.x).folds;
+    std::printf("%8.4f %13.6e %13.6e %11.6f %6d %5d%s\n", p.excess_angle, parts.stretching,
+                parts.bending, parts.normalized_bending(), p.newton_iterations, folds,
+                p.saddle_escapes ? "  (left a saddle by perturbation)" : "");
+    steps << p.excess_angle << ',' << parts.stretching << ',' << parts.bending << ','
+          << parts.normalized_bending() << ',' << parts.current_area << ','
+          << p.newton_iterations << ',' << folds << ',' << p.saddle_escapes << '\n';
     steps.flush();
-    step = std::min(max_step, 1.5 * step);
+  };
+  const auto log_iteration = [verbose](const NewtonIterate& it) {
+    if (verbose)
+      std::printf("    newton %3d  E %.12e  |g| %.3e  alpha %.3g  |dx| %.3e  shift %.3e\n",
+                  it.iteration, it.energy, it.gradient_inf_norm, it.step_length, it.step_inf_norm,
+                  it.shift);
+  };
+  GrowthPathOptions path_options;
+  path_options.max_step = max_step;
+  const GrowthPathResult path = grow_along_path(
+      model, x_start, 0.0, phi_target, pinned, newton,
+      [&](int) { return perturbation(model, amplitude, rng, 1.0); }, path_options, on_point,
+      log_iteration);
+  const Eigen::VectorXd& x = path.last.x;
+  if (!path.reached_target) {
+    write_vtu(out_dir + "/last_converged.vtu", shell_snapshot(model, x, 2));
+    std::fprintf(stderr, "econe_at: error: %s; the last converged state (phi_e = %.6g) is in %s\n",
+                 path.message.c_str(), path.last.excess_angle,
+                 (out_dir + "/last_converged.vtu").c_str());
+    return 3;
   }
+  const double phi = path.last.excess_angle;
 
   const ShellEnergyBreakdown parts = model.energy_breakdown(x);
   const RimFoldAnalysis rim = analyze_rim_folds(model, x);
-  write_state(x, "econe.vtu");
+  write_vtu(out_dir + "/econe.vtu", shell_snapshot(model, x, 2));
   std::printf("\nphi_e            %.6f\n", phi);
   std::printf("E_stretch        %.9e J\n", parts.stretching);
   std::printf("E_bend           %.9e J\n", parts.bending);

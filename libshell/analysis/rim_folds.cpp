@@ -1,6 +1,7 @@
 #include "libshell/analysis/rim_folds.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,7 +11,7 @@
 namespace growshell {
 namespace {
 
-/// Below this amplitude of every mode m >= 2 the rim is a flat circle: no folds.
+/// Below this rms elevation of the rim directions above their best plane the rim is flat.
 constexpr double kFlatAmplitude = 1e-8;
 
 }  // namespace
@@ -102,8 +103,13 @@ RimFoldAnalysis analyze_rim_folds(const ShellModel& model, const Eigen::Ref<cons
   for (int m = 1; m <= max_mode; ++m)
     out.mode_amplitudes(m) = std::sqrt(c.row(2 * m - 1).squaredNorm() + c.row(2 * m).squaredNorm());
   Eigen::Index best = 0;
-  const double largest = out.mode_amplitudes.tail(max_mode - 1).maxCoeff(&best);
-  out.folds = largest > kFlatAmplitude ? static_cast<int>(best) + 2 : 0;
+  out.mode_amplitudes.tail(max_mode - 1).maxCoeff(&best);
+  // A planar rim (rms distance of the directions from their best plane through the apex
+  // below kFlatAmplitude) has no folds; its m >= 2 content is only the uneven spacing of the
+  // rim vertices in angle.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(D);
+  const double rms_elevation = svd.singularValues()(2) / std::sqrt(static_cast<double>(n));
+  out.folds = rms_elevation > kFlatAmplitude ? static_cast<int>(best) + 2 : 0;
   return out;
 }
 
