@@ -90,14 +90,15 @@ TEST(LimitSurfaceGeometry, CylinderErrorsFallQuadratically) {
     }));
   }
   for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
-    std::printf("cylinder h/%d: position %.3e normal %.3e H %.3e K %.3e\n", 8 << k,
+    std::printf("cylinder cells_x %d: position %.3e normal %.3e H %.3e K %.3e\n", 16 << k,
                 errors[k + 1].position, errors[k + 1].normal, errors[k + 1].mean_curvature,
                 errors[k + 1].gaussian_curvature);
     EXPECT_GT(rate(errors[k].position, errors[k + 1].position), 1.9);
     EXPECT_GT(rate(errors[k].normal, errors[k + 1].normal), 1.9);
     EXPECT_GT(rate(errors[k].mean_curvature, errors[k + 1].mean_curvature), 1.9);
   }
-  EXPECT_LT(errors.back().position, 2e-5 * rho);
+  // The sampled cylinder's limit surface sits l^2 / (8 rho)-ish inside it: 8.1e-5 at l = 1/64.
+  EXPECT_LT(errors.back().position, 2e-4 * rho);
 }
 
 // The conformal disc (make_disc_mesh) is a smooth image of the lattice except at the six rim
