@@ -118,10 +118,15 @@ JetVector pull_back_stresses(const SurfaceJet& jet, const JetGeometry& g, const 
   return out;
 }
 
-void target_components(const Eigen::Matrix2d& abar, double out[3]) {
-  out[0] = abar(0, 0);
-  out[1] = abar(1, 1);
-  out[2] = abar(0, 1);
+/// Material response at the current surface for the rest data of one point (plain doubles).
+MaterialResponse<double> response_at(const JetGeometry& g, const ShellPointRest& rest,
+                                     const Material& material) {
+  const double abar[3] = {rest.target_metric(0, 0), rest.target_metric(1, 1),
+                          rest.target_metric(0, 1)};
+  return material_response<double>(g, abar, rest.weight,
+                                   stretching_modulus(material, rest.thickness),
+                                   bending_modulus(material, rest.thickness),
+                                   material.poisson_ratio);
 }
 
 }  // namespace
@@ -129,11 +134,7 @@ void target_components(const Eigen::Matrix2d& abar, double out[3]) {
 ShellPointEnergy shell_point_energy(const SurfaceJet& jet, const ShellPointRest& rest,
                                     const Material& material) {
   const JetGeometry g = jet_geometry(jet);
-  double abar[3];
-  target_components(rest.target_metric, abar);
-  const auto resp = material_response<double>(
-      g, abar, rest.weight, stretching_modulus(material, rest.thickness),
-      bending_modulus(material, rest.thickness), material.poisson_ratio);
+  const auto resp = response_at(g, rest, material);
   ShellPointEnergy out;
   out.stretching = resp.stretching;
   out.bending = g.normal_length > 0.0 ? resp.bending : std::numeric_limits<double>::quiet_NaN();
@@ -145,11 +146,7 @@ ShellPointEnergy shell_point_energy(const SurfaceJet& jet, const ShellPointRest&
 double shell_point_gradient(const SurfaceJet& jet, const ShellPointRest& rest,
                             const Material& material, JetVector& gradient) {
   const JetGeometry g = jet_geometry(jet);
-  double abar[3];
-  target_components(rest.target_metric, abar);
-  const auto resp = material_response<double>(
-      g, abar, rest.weight, stretching_modulus(material, rest.thickness),
-      bending_modulus(material, rest.thickness), material.poisson_ratio);
+  const auto resp = response_at(g, rest, material);
   gradient = pull_back_stresses(jet, g, resp.sigma, resp.mu);
   return resp.stretching + resp.bending;
 }
@@ -157,12 +154,9 @@ double shell_point_gradient(const SurfaceJet& jet, const ShellPointRest& rest,
 double shell_point_hessian(const SurfaceJet& jet, const ShellPointRest& rest,
                            const Material& material, JetVector& gradient, JetMatrix& hessian) {
   const JetGeometry g = jet_geometry(jet);
-  double abar[3];
-  target_components(rest.target_metric, abar);
   const double cs = stretching_modulus(material, rest.thickness);
   const double cb = bending_modulus(material, rest.thickness);
-  const auto resp =
-      material_response<double>(g, abar, rest.weight, cs, cb, material.poisson_ratio);
+  const auto resp = response_at(g, rest, material);
   gradient = pull_back_stresses(jet, g, resp.sigma, resp.mu);
 
   const double l = g.normal_length;
