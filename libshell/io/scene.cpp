@@ -1,0 +1,498 @@
+#include "libshell/io/scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "libshell/mesh/disc_mesh.hpp"
+
+namespace growshell {
+namespace {
+
+// ordered_json keeps the members in file order, so the first error reported is the first
+// one in the file and scene_to_json writes the sections in the order of the field table.
+using Json = nlohmann::ordered_json;
+
+[[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
+
+/// Shortest text that reads back as the same double, so that error messages never show a
+/// rejected value rounded onto its bound (0.50000001 printed as "0.5").
+std::string format(double value) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
+
+// ---- Names of the enumerations -----------------------------------------------------------
+
+template <class Enum>
+using NameTable = std::initializer_list<std::pair<Enum, std::string_view>>;
+
+const NameTable<SceneShape> kShapeNames = {{SceneShape::Disc, "disc"}, {SceneShape::Ring, "ring"}};
+const NameTable<GrowthLaw> kLawNames = {{GrowthLaw::Circumferential, "circumferential"}};
+const NameTable<ContinuationDirection> kDirectionNames = {
+    {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
+
+template <class Enum>
+std::string enum_name(const NameTable<Enum>& names, Enum value) {
+  for (const auto& [v, name] : names)
+    if (v == value) return std::string(name);
+  throw std::logic_error("enumeration value without a name");
+}
+
+template <class Enum>
+std::string allowed_names(const NameTable<Enum>& names) {
+  std::string list;
+  for (const auto& [v, name] : names) list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+  return list;
+}
+
+// ---- Typed reads of JSON values ----------------------------------------------------------
+
+double read_number(const Json& v, const std::string& key) {
+  if (!v.is_number()) fail(key + " must be a number (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+int read_int(const Json& v, const std::string& key) {
+  if (!v.is_number_integer()) fail(key + " must be an integer (got " + v.dump() + ")");
+  // Large positive literals are stored unsigned; get<std::int64_t> would wrap them.
+  if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(INT_MAX)
+                             : (v.get<std::int64_t>() < INT_MIN || v.get<std::int64_t>() > INT_MAX))
+    fail(key + " = " + v.dump() + " must fit in a 32-bit integer");
+  return static_cast<int>(v.get<std::int64_t>());
+}
+
+bool read_bool(const Json& v, const std::string& key) {
+  if (!v.is_boolean()) fail(key + " must be true or false (got " + v.dump() + ")");
+  return v.get<bool>();
+}
+
+std::string read_string(const Json& v, const std::string& key) {
+  if (!v.is_string()) fail(key + " must be a string (got " + v.dump() + ")");
+  return v.get<std::string>();
+}
+
+template <class Enum>
+Enum read_enum(const Json& v, const std::string& key, const NameTable<Enum>& names) {
+  if (!v.is_string()) fail(key + " must be one of " + allowed_names(names) + " (got " + v.dump() + ")");
+  const std::string text = v.get<std::string>();
+  for (const auto& [value, name] : names)
+    if (text == name) return value;
+  fail(key + " = \"" + text + "\" must be one of " + allowed_names(names));
+}
+
+/// A number, or the string "auto" (unset: the program derives the value).
+std::optional<double> read_number_or_auto(const Json& v, const std::string& key) {
+  if (v.is_string() && v.get<std::string>() == "auto") return std::nullopt;
+  if (!v.is_number()) fail(key + " must be a number or \"auto\" (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+Json write_number_or_auto(const std::optional<double>& value) {
+  return value ? Json(*value) : Json("auto");
+}
+
+Eigen::Vector2d read_point2(const Json& v, const std::string& key) {
+  if (!(v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()))
+    fail(key + " must be an array of two numbers [x, y] (got " + v.dump() + ")");
+  return {v[0].get<double>(), v[1].get<double>()};
+}
+
+std::uint32_t read_seed(const Json& v, const std::string& key) {
+  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > UINT32_MAX)
+    fail(key + " must be an integer in [0, 4294967295] (got " + v.dump() + ")");
+  return static_cast<std::uint32_t>(v.get<std::uint64_t>());
+}
+
+// ---- Thickness profiles ------------------------------------------------------------------
+
+/// "thickness" is a number (constant) or an object {"profile": name, ...profile's keys}.
+ThicknessProfile read_thickness(const Json& v, const std::string& key) {
+  if (v.is_number()) return ConstantThickness{v.get<double>()};
+  if (!v.is_object())
+    fail(key + " must be a number or an object with a \"profile\" (got " + v.dump() + ")");
+  if (!v.contains("profile")) fail(key + ".profile is missing (allowed: \"linear\")");
+  const std::string profile = read_string(v.at("profile"), key + ".profile");
+  const auto required_number = [&](const char* name) {
+    if (!v.contains(name)) fail(key + "." + name + " is required for profile \"" + profile + "\"");
+    return read_number(v.at(name), key + "." + name);
+  };
+  const auto only_keys = [&](std::initializer_list<std::string_view> allowed) {
+    for (const auto& item : v.items())
+      if (std::find(allowed.begin(), allowed.end(), item.key()) == allowed.end())
+        fail("unknown key '" + key + "." + item.key() + "' for profile \"" + profile + "\"");
+  };
+  if (profile == "linear") {
+    only_keys({"profile", "center", "rim"});
+    return LinearThickness{required_number("center"), required_number("rim")};
+  }
+  fail(key + ".profile = \"" + profile + "\" must be one of \"linear\" (or give a number)");
+}
+
+Json write_thickness(const ThicknessProfile& profile) {
+  struct Writer {
+    Json operator()(const ConstantThickness& p) const { return p.value; }
+    Json operator()(const LinearThickness& p) const {
+      Json j;
+      j["profile"] = "linear";
+      j["center"] = p.center;
+      j["rim"] = p.rim;
+      return j;
+    }
+  };
+  return std::visit(Writer{}, profile);
+}
+
+// ---- The field table: one row per key drives reading, writing and overrides -------------
+
+struct Field {
+  std::string_view key;
+  void (*set)(Scene&, const Json&, const std::string& key);
+  Json (*get)(const Scene&);
+  /// Command-line values of string keys are taken verbatim (a directory named "1" must not
+  /// become a number); others are parsed as JSON first.
+  bool verbatim = false;
+};
+
+// clang-format off
+const Field kFields[] = {
+  {"geometry.shape",
+   [](Scene& s, const Json& v, const std::string& k) { s.geometry.shape = read_enum(v, k, kShapeNames); },
+   [](const Scene& s) { return Json(enum_name(kShapeNames, s.geometry.shape)); }, true},
+  {"geometry.radius",
+   [](Scene& s, const Json& v, const std::string& k) { s.geometry.radius = read_number(v, k); },
+   [](const Scene& s) { return Json(s.geometry.radius); }},
+  {"geometry.inner_radius",
+   [](Scene& s, const Json& v, const std::string& k) { s.geometry.inner_radius = read_number(v, k); },
+   [](const Scene& s) { return Json(s.geometry.inner_radius); }},
+  {"thickness",
+   [](Scene& s, const Json& v, const std::string& k) { s.thickness = read_thickness(v, k); },
+   [](const Scene& s) { return write_thickness(s.thickness); }},
+  {"material.youngs_modulus",
+   [](Scene& s, const Json& v, const std::string& k) { s.material.youngs_modulus = read_number(v, k); },
+   [](const Scene& s) { return Json(s.material.youngs_modulus); }},
+  {"material.poisson_ratio",
+   [](Scene& s, const Json& v, const std::string& k) { s.material.poisson_ratio = read_number(v, k); },
+   [](const Scene& s) { return Json(s.material.poisson_ratio); }},
+  {"growth.law",
+   [](Scene& s, const Json& v, const std::string& k) { s.growth.law = read_enum(v, k, kLawNames); },
+   [](const Scene& s) { return Json(enum_name(kLawNames, s.growth.law)); }, true},
+  {"growth.center",
+   [](Scene& s, const Json& v, const std::string& k) { s.growth.center = read_point2(v, k); },
+   [](const Scene& s) { return Json::array({s.growth.center.x(), s.growth.center.y()}); }},
+  {"mesh.rings",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.rings = read_int(v, k); },
+   [](const Scene& s) { return Json(s.mesh.rings); }},
+  {"mesh.radial_layers",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.radial_layers = read_int(v, k); },
+   [](const Scene& s) { return Json(s.mesh.radial_layers); }},
+  {"mesh.grading_exponent",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.grading_exponent = read_number(v, k); },
+   [](const Scene& s) { return Json(s.mesh.grading_exponent); }},
+  {"mesh.min_spacing",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.min_spacing = read_number_or_auto(v, k); },
+   [](const Scene& s) { return write_number_or_auto(s.mesh.min_spacing); }},
+  {"mesh.quadrature_degree",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.quadrature_degree = read_int(v, k); },
+   [](const Scene& s) { return Json(s.mesh.quadrature_degree); }},
+  {"physics.contact",
+   [](Scene& s, const Json& v, const std::string& k) { s.physics.contact = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.physics.contact); }},
+  {"physics.contact_distance",
+   [](Scene& s, const Json& v, const std::string& k) { s.physics.contact_distance = read_number_or_auto(v, k); },
+   [](const Scene& s) { return write_number_or_auto(s.physics.contact_distance); }},
+  {"continuation.phi_start",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.phi_start = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.phi_start); }},
+  {"continuation.phi_min",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.phi_min = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.phi_min); }},
+  {"continuation.phi_max",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.phi_max = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.phi_max); }},
+  {"continuation.max_step",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.max_step = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.max_step); }},
+  {"continuation.min_step",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.min_step = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.min_step); }},
+  {"continuation.direction",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.direction = read_enum(v, k, kDirectionNames); },
+   [](const Scene& s) { return Json(enum_name(kDirectionNames, s.continuation.direction)); }, true},
+  {"continuation.mode",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.mode = read_int(v, k); },
+   [](const Scene& s) { return Json(s.continuation.mode); }},
+  {"continuation.perturbation_amplitude",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.perturbation_amplitude = read_number(v, k); },
+   [](const Scene& s) { return Json(s.continuation.perturbation_amplitude); }},
+  {"continuation.seed",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.seed = read_seed(v, k); },
+   [](const Scene& s) { return Json(s.continuation.seed); }},
+  {"output.directory",
+   [](Scene& s, const Json& v, const std::string& k) { s.output.directory = read_string(v, k); },
+   [](const Scene& s) { return Json(s.output.directory); }, true},
+  {"output.snapshot_every",
+   [](Scene& s, const Json& v, const std::string& k) { s.output.snapshot_every = read_int(v, k); },
+   [](const Scene& s) { return Json(s.output.snapshot_every); }},
+  {"output.write_vtk",
+   [](Scene& s, const Json& v, const std::string& k) { s.output.write_vtk = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.output.write_vtk); }},
+};
+// clang-format on
+
+const Field* find_field(std::string_view key) {
+  for (const Field& f : kFields)
+    if (f.key == key) return &f;
+  return nullptr;
+}
+
+/// The keys directly below `section` ("" for the top level), e.g. "rings, radial_layers, ...".
+std::string keys_below(const std::string& section) {
+  const std::string prefix = section.empty() ? "" : section + ".";
+  std::vector<std::string> names;
+  for (const Field& f : kFields) {
+    if (f.key.substr(0, prefix.size()) != prefix) continue;
+    std::string rest(f.key.substr(prefix.size()));
+    rest = rest.substr(0, rest.find('.'));
+    if (std::find(names.begin(), names.end(), rest) == names.end()) names.push_back(rest);
+  }
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+bool is_section(const std::string& key) {
+  const std::string prefix = key + ".";
+  return std::any_of(std::begin(kFields), std::end(kFields),
+                     [&](const Field& f) { return f.key.substr(0, prefix.size()) == prefix; });
+}
+
+[[noreturn]] void unknown_key(const std::string& key) {
+  const std::size_t dot = key.rfind('.');
+  const std::string section = dot == std::string::npos ? "" : key.substr(0, dot);
+  fail("unknown key '" + key + "' (allowed " + (section.empty() ? "at the top level" : "in " + section) +
+       ": " + keys_below(section) + ")");
+}
+
+void apply_object(Scene& scene, const Json& object, const std::string& prefix) {
+  for (const auto& item : object.items()) {
+    const std::string key = prefix.empty() ? item.key() : prefix + "." + item.key();
+    if (const Field* field = find_field(key)) {
+      field->set(scene, item.value(), key);
+    } else if (is_section(key)) {
+      if (!item.value().is_object()) fail(key + " must be an object (got " + item.value().dump() + ")");
+      apply_object(scene, item.value(), key);
+    } else {
+      unknown_key(key);
+    }
+  }
+}
+
+// ---- Range checks ------------------------------------------------------------------------
+
+void require_positive(double value, const std::string& key) {
+  if (!(std::isfinite(value) && value > 0.0)) fail(key + " = " + format(value) + " must be finite and > 0");
+}
+
+void require_nonnegative(double value, const std::string& key) {
+  if (!(std::isfinite(value) && value >= 0.0)) fail(key + " = " + format(value) + " must be finite and >= 0");
+}
+
+void require_finite(double value, const std::string& key) {
+  if (!std::isfinite(value)) fail(key + " = " + format(value) + " must be finite");
+}
+
+void require_at_least(int value, int minimum, const std::string& key) {
+  if (value < minimum) fail(key + " = " + std::to_string(value) + " must be >= " + std::to_string(minimum));
+}
+
+void validate_thickness(const ThicknessProfile& profile) {
+  struct Check {
+    void operator()(const ConstantThickness& p) const { require_positive(p.value, "thickness"); }
+    void operator()(const LinearThickness& p) const {
+      // h is linear in the clamped r, so positive ends mean positive everywhere.
+      require_positive(p.center, "thickness.center");
+      require_positive(p.rim, "thickness.rim");
+    }
+  };
+  std::visit(Check{}, profile);
+}
+
+}  // namespace
+
+Scene default_scene() { return Scene{}; }
+
+void validate_scene(const Scene& scene) {
+  const SceneGeometry& g = scene.geometry;
+  require_positive(g.radius, "geometry.radius");
+  if (g.shape == SceneShape::Ring && !(g.inner_radius > 0.0 && g.inner_radius < g.radius))
+    fail("geometry.inner_radius = " + format(g.inner_radius) + " must be in (0, geometry.radius = " +
+         format(g.radius) + ")");
+
+  validate_thickness(scene.thickness);
+
+  require_positive(scene.material.youngs_modulus, "material.youngs_modulus");
+  const double nu = scene.material.poisson_ratio;
+  if (!(nu > -1.0 && nu < 0.5)) fail("material.poisson_ratio = " + format(nu) + " must be in (-1, 0.5)");
+
+  require_finite(scene.growth.center.x(), "growth.center[0]");
+  require_finite(scene.growth.center.y(), "growth.center[1]");
+
+  const SceneMesh& m = scene.mesh;
+  require_at_least(m.rings, 2, "mesh.rings");
+  require_at_least(m.radial_layers, 1, "mesh.radial_layers");
+  if (!(std::isfinite(m.grading_exponent) && m.grading_exponent >= 1.0))
+    fail("mesh.grading_exponent = " + format(m.grading_exponent) + " must be finite and >= 1");
+  if (m.min_spacing) require_nonnegative(*m.min_spacing, "mesh.min_spacing");
+  if (m.quadrature_degree < 1 || m.quadrature_degree > 6)
+    fail("mesh.quadrature_degree = " + std::to_string(m.quadrature_degree) + " must be in {1, ..., 6}");
+
+  if (scene.physics.contact_distance) require_positive(*scene.physics.contact_distance, "physics.contact_distance");
+
+  const SceneContinuation& c = scene.continuation;
+  require_finite(c.phi_min, "continuation.phi_min");
+  require_finite(c.phi_max, "continuation.phi_max");
+  require_finite(c.phi_start, "continuation.phi_start");
+  if (!(c.phi_min < c.phi_max))
+    fail("continuation.phi_min = " + format(c.phi_min) + " must be < continuation.phi_max = " + format(c.phi_max));
+  if (!(c.phi_start >= c.phi_min && c.phi_start <= c.phi_max))
+    fail("continuation.phi_start = " + format(c.phi_start) + " must be in [continuation.phi_min = " +
+         format(c.phi_min) + ", continuation.phi_max = " + format(c.phi_max) + "]");
+  require_positive(c.max_step, "continuation.max_step");
+  if (!(c.min_step > 0.0 && c.min_step <= c.max_step))
+    fail("continuation.min_step = " + format(c.min_step) + " must be in (0, continuation.max_step = " +
+         format(c.max_step) + "]");
+  require_at_least(c.mode, 2, "continuation.mode");
+  require_nonnegative(c.perturbation_amplitude, "continuation.perturbation_amplitude");
+
+  if (scene.output.directory.empty()) fail("output.directory must not be empty");
+  require_at_least(scene.output.snapshot_every, 1, "output.snapshot_every");
+}
+
+Scene read_scene(const std::string& path) {
+  const std::string where = "scene file '" + path + "': ";
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(where + "no such file");
+  if (std::filesystem::is_directory(path, ec)) fail(where + "is a directory, not a file");
+  std::ifstream in(path);
+  if (!in) fail(where + "cannot be opened for reading");
+  Json document;
+  try {
+    document = Json::parse(in, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const Json::parse_error& e) {
+    fail(where + "malformed JSON: " + e.what());
+  }
+  if (!document.is_object()) fail(where + "the top level must be a JSON object (got " + document.type_name() + ")");
+  Scene scene = default_scene();
+  try {
+    apply_object(scene, document, "");
+    validate_scene(scene);
+  } catch (const std::invalid_argument& e) {
+    fail(where + e.what());
+  }
+  return scene;
+}
+
+void apply_override(Scene& scene, const std::string& key, const std::string& value) {
+  const Field* field = find_field(key);
+  if (!field) {
+    if (is_section(key)) fail("'" + key + "' is a section, not a key; its keys: " + keys_below(key));
+    unknown_key(key);
+  }
+  Json parsed;
+  if (field->verbatim) {
+    parsed = value;
+  } else {
+    // Text that is not JSON ("abc", "auto") is kept as a string, so the field's own type
+    // check reports it the way a file would.
+    parsed = Json::parse(value, nullptr, /*allow_exceptions=*/false);
+    if (parsed.is_discarded()) parsed = value;
+  }
+  field->set(scene, parsed, key);
+}
+
+std::string scene_to_json(const Scene& scene) {
+  Json document = Json::object();
+  for (const Field& field : kFields) {
+    const std::string key(field.key);
+    const std::size_t dot = key.find('.');
+    if (dot == std::string::npos)
+      document[key] = field.get(scene);
+    else
+      document[key.substr(0, dot)][key.substr(dot + 1)] = field.get(scene);
+  }
+  return document.dump(2) + "\n";
+}
+
+std::vector<std::string> scene_keys() {
+  std::vector<std::string> keys;
+  for (const Field& field : kFields) keys.emplace_back(field.key);
+  return keys;
+}
+
+double thickness_at_radius(const ThicknessProfile& profile, double r, double radius) {
+  struct Evaluate {
+    double r, radius;
+    double operator()(const ConstantThickness& p) const { return p.value; }
+    double operator()(const LinearThickness& p) const {
+      // Clamped so that quadrature points a rounding error outside the rim keep h > 0.
+      const double t = std::clamp(r / radius, 0.0, 1.0);
+      return p.center + (p.rim - p.center) * t;
+    }
+  };
+  return std::visit(Evaluate{r, radius}, profile);
+}
+
+double resolved_min_spacing(const Scene& scene) {
+  if (scene.mesh.min_spacing) return *scene.mesh.min_spacing;
+  return 0.5 * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+}
+
+ThicknessField scene_thickness_field(const Scene& scene) {
+  return [profile = scene.thickness, radius = scene.geometry.radius](const Eigen::Vector3d& X) {
+    return thickness_at_radius(profile, std::hypot(X.x(), X.y()), radius);
+  };
+}
+
+TriangleMesh scene_mesh(const Scene& scene) {
+  validate_scene(scene);
+  if (scene.geometry.shape == SceneShape::Ring) {
+    AnnulusMeshOptions options;
+    options.inner_radius = scene.geometry.inner_radius;
+    options.outer_radius = scene.geometry.radius;
+    options.radial_layers = scene.mesh.radial_layers;
+    options.center = Eigen::Vector2d::Zero();
+    return make_annulus_mesh(options);
+  }
+  DiscMeshOptions options;
+  options.radius = scene.geometry.radius;
+  options.rings = scene.mesh.rings;
+  options.grading_exponent = scene.mesh.grading_exponent;
+  options.min_spacing = resolved_min_spacing(scene);
+  options.center = Eigen::Vector2d::Zero();
+  options.layout = DiscLayout::Conformal;
+  return make_disc_mesh(options);
+}
+
+ShellModelSettings scene_model_settings(const Scene& scene) {
+  validate_scene(scene);
+  ShellModelSettings settings;
+  settings.material = scene.material;
+  settings.thickness = scene_thickness_field(scene);
+  settings.quadrature_degree = scene.mesh.quadrature_degree;
+  settings.growth.center = Eigen::Vector3d(scene.growth.center.x(), scene.growth.center.y(), 0.0);
+  return settings;
+}
+
+}  // namespace growshell

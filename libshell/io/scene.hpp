@@ -1,0 +1,201 @@
+#pragma once
+/// \file
+/// The scene: everything a branch-tracing program models (geometry, thickness, material,
+/// growth, mesh, physics switches, continuation and output settings), read from a JSON file
+/// and overridable key by key from the command line. docs/scenes.md documents every key.
+///
+/// Units: lengths in metres, Young's modulus in pascals, angles in radians. The defaults are
+/// the paper's disc (R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3), so lengths read as units of R.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/energy/material.hpp"
+#include "libshell/mesh/triangle_mesh.hpp"
+
+namespace growshell {
+
+/// Which sheet is modelled.
+enum class SceneShape {
+  Disc,  ///< a disc of radius geometry.radius centred at the origin
+  Ring,  ///< an annulus geometry.inner_radius < r < geometry.radius centred at the origin
+};
+
+/// Shape and size of the flat, ungrown sheet in the plane z = 0.
+struct SceneGeometry {
+  SceneShape shape = SceneShape::Disc;
+  /// Outer radius R (m), > 0.
+  double radius = 1.0;
+  /// Inner radius R_i (m) of a ring, in (0, radius); ignored for a disc.
+  double inner_radius = 0.25;
+};
+
+/// Thickness h (m) equal everywhere; must be > 0.
+struct ConstantThickness {
+  double value = 0.02;
+};
+
+/// Thickness varying linearly with the distance r from the sheet's centre (the origin):
+///   h(r) = center + (rim - center) r / R,  r clamped to [0, R],
+/// so h is `center` at r = 0 and `rim` at r = R (both m, both > 0, hence h > 0 everywhere).
+struct LinearThickness {
+  double center = 0.02;
+  double rim = 0.02;
+};
+
+/// Thickness profile of the sheet. A new profile is a new alternative here plus its cases in
+/// thickness_at_radius, validate_scene and the JSON reader/writer (scene.cpp); std::visit
+/// makes the compiler point at every place that needs one.
+using ThicknessProfile = std::variant<ConstantThickness, LinearThickness>;
+
+/// The growth law.
+enum class GrowthLaw {
+  /// Growth along circles about `center`: G = diag(1, 1 + phi_e / (2 pi)) (radial,
+  /// tangential); see circumferential_growth.hpp.
+  Circumferential,
+};
+
+/// Growth settings.
+struct SceneGrowth {
+  GrowthLaw law = GrowthLaw::Circumferential;
+  /// Centre (m) of the growth law in the plane z = 0; finite.
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+};
+
+/// Control mesh and quadrature.
+struct SceneMesh {
+  /// Number of real rings of the disc mesh (disc only), >= 2.
+  int rings = 24;
+  /// Number of element layers between the inner and outer rim (ring only), >= 1.
+  int radial_layers = 16;
+  /// Radial grading exponent p of the disc mesh (disc only), >= 1; 1 is uniform, 3 refines
+  /// smoothly towards the centre (see make_disc_mesh).
+  double grading_exponent = 3.0;
+  /// Smallest spacing (m) of the graded disc mesh at the centre, >= 0. Unset ("auto" in the
+  /// file) means half the thickness at the centre, resolved by resolved_min_spacing, so that
+  /// it follows a thickness override.
+  std::optional<double> min_spacing;
+  /// Polynomial exactness of the triangle quadrature rule, in {1, ..., 6}.
+  int quadrature_degree = 2;
+};
+
+/// Which physics is switched on.
+struct ScenePhysics {
+  /// Self-contact (gap constraints between mid-surfaces); off by default.
+  bool contact = false;
+  /// Mid-surface distance (m) at which two parts of the sheet touch, > 0. Unset ("auto")
+  /// means the thickness: h for a constant profile, (h_a + h_b) / 2 of the two touching
+  /// points for a varying one (resolved by the contact layer).
+  std::optional<double> contact_distance;
+};
+
+/// Direction in which a branch is followed from continuation.phi_start.
+enum class ContinuationDirection {
+  Forward,   ///< increasing phi_e, up to phi_max
+  Backward,  ///< decreasing phi_e, down to phi_min
+};
+
+/// Continuation in the excess angle phi_e (radians) and the initial perturbation.
+struct SceneContinuation {
+  /// First excess angle of the path, in [phi_min, phi_max].
+  double phi_start = 0.0;
+  /// Lower end of the traced interval (where a backward path stops), < phi_max.
+  double phi_min = 0.0;
+  /// Upper end of the traced interval (where a forward path stops).
+  double phi_max = 3.73;
+  /// Largest continuation step (rad), > 0.
+  double max_step = 0.1;
+  /// Smallest continuation step (rad) before giving up, in (0, max_step].
+  double min_step = 1e-4;
+  ContinuationDirection direction = ContinuationDirection::Forward;
+  /// Fold number n of the branch to follow (2 = the saddle e-cone), >= 2.
+  int mode = 2;
+  /// Amplitude of the initial out-of-plane perturbation relative to R (dimensionless), >= 0.
+  double perturbation_amplitude = 1e-3;
+  /// Seed of the perturbation's random generator.
+  std::uint32_t seed = 1;
+};
+
+/// Where and what the programs write.
+struct SceneOutput {
+  /// Output directory (relative paths are relative to the working directory); non-empty.
+  std::string directory = "out";
+  /// Write a shape snapshot every this many accepted continuation steps, >= 1.
+  int snapshot_every = 1;
+  /// Whether snapshots are also written as VTK files.
+  bool write_vtk = true;
+};
+
+/// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.
+struct Scene {
+  SceneGeometry geometry;
+  ThicknessProfile thickness = ConstantThickness{};
+  /// Young's modulus Y (Pa) > 0 and Poisson ratio nu in (-1, 0.5).
+  Material material;
+  SceneGrowth growth;
+  SceneMesh mesh;
+  ScenePhysics physics;
+  SceneContinuation continuation;
+  SceneOutput output;
+};
+
+/// The paper's disc: R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3, 24 rings with grading 3 and
+/// min_spacing h/2 (auto), quadrature degree 2, phi_e from 0 to 3.73 with steps in
+/// [1e-4, 0.1], mode 2, perturbation 1e-3 R with seed 1, output to "out".
+Scene default_scene();
+
+/// Throws std::invalid_argument naming the first offending key, its value and the allowed
+/// range, e.g. "geometry.inner_radius = 1.2 must be in (0, geometry.radius = 1)".
+void validate_scene(const Scene& scene);
+
+/// Reads a JSON scene file: starts from default_scene() and overrides what the file sets
+/// (// and /* */ comments are allowed), then validates. Throws std::invalid_argument whose
+/// message starts with the path and names the problem: a missing or unreadable file,
+/// malformed JSON (with the parser's line and column), an unknown key ("unknown key
+/// 'mesh.ringz'"), a wrong type ("mesh.rings must be an integer") or a range error.
+Scene read_scene(const std::string& path);
+
+/// Sets one dotted key (as in the file, e.g. "thickness", "geometry.inner_radius",
+/// "continuation.direction") from its command-line text. Numbers, booleans and arrays are
+/// written as in JSON ("0.01", "true", "[0.1, 0]"); string-valued keys take the text as is;
+/// "thickness" takes a number or a JSON object ('{"profile": "linear", ...}'); "auto" resets
+/// mesh.min_spacing and physics.contact_distance. Throws std::invalid_argument for an unknown
+/// key or a wrong type. Ranges are not checked: call validate_scene after all overrides.
+void apply_override(Scene& scene, const std::string& key, const std::string& value);
+
+/// The scene as a complete JSON document (every key, 2-space indent, trailing newline) that
+/// read_scene turns back into the same scene; numbers are written in their shortest
+/// round-trip form.
+std::string scene_to_json(const Scene& scene);
+
+/// All dotted keys a scene file may set, in file order ("geometry.shape", ..., "thickness",
+/// ..., "output.write_vtk").
+std::vector<std::string> scene_keys();
+
+/// Thickness h (m) of `profile` at distance r (m) from the centre of a sheet of radius R (m).
+double thickness_at_radius(const ThicknessProfile& profile, double r, double radius);
+
+/// The mesh's smallest spacing (m): mesh.min_spacing if set, else half the thickness at the
+/// centre (r = 0).
+double resolved_min_spacing(const Scene& scene);
+
+/// Thickness field over reference positions X (m): thickness_at_radius at r = |(X_x, X_y)|.
+ThicknessField scene_thickness_field(const Scene& scene);
+
+/// Validates the scene and builds its control mesh: make_disc_mesh (conformal layout,
+/// rings, grading, resolved_min_spacing) for a disc, make_annulus_mesh (radial_layers) for a
+/// ring, both centred at the origin.
+TriangleMesh scene_mesh(const Scene& scene);
+
+/// Validates the scene and returns the ShellModel settings it declares: material,
+/// scene_thickness_field, quadrature degree and growth centre (z = 0); threads stay 0
+/// (OpenMP's default).
+ShellModelSettings scene_model_settings(const Scene& scene);
+
+}  // namespace growshell

@@ -1,0 +1,501 @@
+#include "libshell/io/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include <unistd.h>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/mesh/disc_mesh.hpp"
+
+namespace growshell {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The repository root, found from this file's (absolute) path: tests/io/test_scene.cpp.
+fs::path repo_root() { return fs::path(__FILE__).parent_path().parent_path().parent_path(); }
+
+/// A scratch directory per test, removed at the end.
+class SceneFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    // The process id keeps concurrent runs from other build directories apart.
+    dir_ = fs::temp_directory_path() /
+           ("growshell_scene_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  fs::path dir_;
+};
+
+/// The message of the std::invalid_argument that `f` throws ("" if it throws nothing).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// ---- Defaults ----------------------------------------------------------------------------
+
+TEST(Scene, DefaultsAreThePapersDisc) {
+  const Scene s = default_scene();
+  EXPECT_EQ(s.geometry.shape, SceneShape::Disc);
+  EXPECT_EQ(s.geometry.radius, 1.0);
+  ASSERT_TRUE(std::holds_alternative<ConstantThickness>(s.thickness));
+  EXPECT_EQ(std::get<ConstantThickness>(s.thickness).value, 0.02);
+  EXPECT_EQ(s.material.youngs_modulus, 1e4);
+  EXPECT_EQ(s.material.poisson_ratio, 0.3);
+  EXPECT_EQ(s.growth.law, GrowthLaw::Circumferential);
+  EXPECT_EQ(s.growth.center, Eigen::Vector2d::Zero());
+  EXPECT_EQ(s.mesh.rings, 24);
+  EXPECT_EQ(s.mesh.grading_exponent, 3.0);
+  EXPECT_FALSE(s.mesh.min_spacing.has_value());
+  EXPECT_EQ(resolved_min_spacing(s), 0.01);  // h / 2, exact in binary up to one rounding
+  EXPECT_EQ(s.mesh.quadrature_degree, 2);
+  EXPECT_FALSE(s.physics.contact);
+  EXPECT_FALSE(s.physics.contact_distance.has_value());
+  EXPECT_EQ(s.continuation.phi_start, 0.0);
+  EXPECT_EQ(s.continuation.phi_max, 3.73);
+  EXPECT_EQ(s.continuation.max_step, 0.1);
+  EXPECT_EQ(s.continuation.min_step, 1e-4);
+  EXPECT_EQ(s.continuation.direction, ContinuationDirection::Forward);
+  EXPECT_EQ(s.continuation.mode, 2);
+  EXPECT_EQ(s.continuation.perturbation_amplitude, 1e-3);
+  EXPECT_EQ(s.continuation.seed, 1u);
+  EXPECT_EQ(s.output.directory, "out");
+  EXPECT_GE(s.output.snapshot_every, 1);
+  EXPECT_NO_THROW(validate_scene(s));
+}
+
+TEST(Scene, MinSpacingFollowsAThicknessOverride) {
+  Scene s = default_scene();
+  apply_override(s, "thickness", "0.005");
+  EXPECT_EQ(resolved_min_spacing(s), 0.0025);
+  apply_override(s, "mesh.min_spacing", "0.004");
+  EXPECT_EQ(resolved_min_spacing(s), 0.004);
+  apply_override(s, "mesh.min_spacing", "auto");
+  EXPECT_EQ(resolved_min_spacing(s), 0.0025);
+}
+
+// ---- Round trip --------------------------------------------------------------------------
+
+/// A scene in which every field differs from its default.
+Scene everything_changed() {
+  Scene s;
+  s.geometry.shape = SceneShape::Ring;
+  s.geometry.radius = 2.5;
+  s.geometry.inner_radius = 0.1 + 0.2;  // not exactly 0.3: the writer must keep all digits
+  s.thickness = LinearThickness{0.03, 1.0 / 3.0};
+  s.material.youngs_modulus = 2.5e7;
+  s.material.poisson_ratio = -0.25;
+  s.growth.center = {0.125, -0.5};
+  s.mesh.rings = 7;
+  s.mesh.radial_layers = 9;
+  s.mesh.grading_exponent = 1.0;
+  s.mesh.min_spacing = 0.003;
+  s.mesh.quadrature_degree = 5;
+  s.physics.contact = true;
+  s.physics.contact_distance = 0.021;
+  s.continuation.phi_start = 6.5;
+  s.continuation.phi_min = 1.0;
+  s.continuation.phi_max = 12.566370614359172;
+  s.continuation.max_step = 0.05;
+  s.continuation.min_step = 1e-6;
+  s.continuation.direction = ContinuationDirection::Backward;
+  s.continuation.mode = 3;
+  s.continuation.perturbation_amplitude = 0.0;
+  s.continuation.seed = 4294967295u;
+  s.output.directory = "results/ring \"a\"";
+  s.output.snapshot_every = 4;
+  s.output.write_vtk = false;
+  return s;
+}
+
+TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
+  const Scene a = everything_changed();
+  ASSERT_NO_THROW(validate_scene(a));
+  const Scene b = read_scene(write("scene.json", scene_to_json(a)));
+  EXPECT_EQ(b.geometry.shape, a.geometry.shape);
+  EXPECT_EQ(b.geometry.radius, a.geometry.radius);
+  EXPECT_EQ(b.geometry.inner_radius, a.geometry.inner_radius);  // bit-exact
+  ASSERT_TRUE(std::holds_alternative<LinearThickness>(b.thickness));
+  EXPECT_EQ(std::get<LinearThickness>(b.thickness).center, 0.03);
+  EXPECT_EQ(std::get<LinearThickness>(b.thickness).rim, 1.0 / 3.0);
+  EXPECT_EQ(b.material.youngs_modulus, a.material.youngs_modulus);
+  EXPECT_EQ(b.material.poisson_ratio, a.material.poisson_ratio);
+  EXPECT_EQ(b.growth.law, a.growth.law);
+  EXPECT_EQ(b.growth.center, a.growth.center);
+  EXPECT_EQ(b.mesh.rings, a.mesh.rings);
+  EXPECT_EQ(b.mesh.radial_layers, a.mesh.radial_layers);
+  EXPECT_EQ(b.mesh.grading_exponent, a.mesh.grading_exponent);
+  EXPECT_EQ(b.mesh.min_spacing, a.mesh.min_spacing);
+  EXPECT_EQ(b.mesh.quadrature_degree, a.mesh.quadrature_degree);
+  EXPECT_EQ(b.physics.contact, a.physics.contact);
+  EXPECT_EQ(b.physics.contact_distance, a.physics.contact_distance);
+  EXPECT_EQ(b.continuation.phi_start, a.continuation.phi_start);
+  EXPECT_EQ(b.continuation.phi_min, a.continuation.phi_min);
+  EXPECT_EQ(b.continuation.phi_max, a.continuation.phi_max);
+  EXPECT_EQ(b.continuation.max_step, a.continuation.max_step);
+  EXPECT_EQ(b.continuation.min_step, a.continuation.min_step);
+  EXPECT_EQ(b.continuation.direction, a.continuation.direction);
+  EXPECT_EQ(b.continuation.mode, a.continuation.mode);
+  EXPECT_EQ(b.continuation.perturbation_amplitude, a.continuation.perturbation_amplitude);
+  EXPECT_EQ(b.continuation.seed, a.continuation.seed);
+  EXPECT_EQ(b.output.directory, a.output.directory);
+  EXPECT_EQ(b.output.snapshot_every, a.output.snapshot_every);
+  EXPECT_EQ(b.output.write_vtk, a.output.write_vtk);
+  EXPECT_EQ(scene_to_json(b), scene_to_json(a));
+}
+
+TEST_F(SceneFileTest, DefaultSceneRoundTripsAndWritesEveryKey) {
+  const std::string text = scene_to_json(default_scene());
+  EXPECT_EQ(scene_to_json(read_scene(write("d.json", text))), text);
+  for (const std::string& key : scene_keys()) {
+    const std::string leaf = key.substr(key.rfind('.') + 1);
+    EXPECT_NE(text.find("\"" + leaf + "\":"), std::string::npos) << key;
+  }
+  EXPECT_NE(text.find("\"min_spacing\": \"auto\""), std::string::npos);
+}
+
+TEST_F(SceneFileTest, PartialFileOverridesOnlyWhatItSets) {
+  const Scene s = read_scene(write("p.json", R"({
+    // comments are allowed
+    "thickness": 0.005,
+    "mesh": {"rings": 12},
+    "continuation": {"direction": "backward", "phi_start": 2}
+  })"));
+  EXPECT_EQ(std::get<ConstantThickness>(s.thickness).value, 0.005);
+  EXPECT_EQ(s.mesh.rings, 12);
+  EXPECT_EQ(s.continuation.direction, ContinuationDirection::Backward);
+  EXPECT_EQ(s.continuation.phi_start, 2.0);
+  // Untouched keys keep their defaults, including those of the sections the file opened.
+  EXPECT_EQ(s.mesh.grading_exponent, 3.0);
+  EXPECT_EQ(s.continuation.phi_max, 3.73);
+  EXPECT_EQ(s.material.youngs_modulus, 1e4);
+  EXPECT_EQ(resolved_min_spacing(s), 0.0025);
+}
+
+TEST(Scene, ExampleFileIsTheDefaultSceneInFull) {
+  const fs::path example = repo_root() / "examples" / "scenes" / "disc_h002.json";
+  std::ifstream in(example);
+  ASSERT_TRUE(in) << example;
+  std::stringstream text;
+  text << in.rdbuf();
+  // Byte-equal: the example is regenerated whenever a default changes.
+  EXPECT_EQ(text.str(), scene_to_json(default_scene()));
+  EXPECT_EQ(scene_to_json(read_scene(example.string())), scene_to_json(default_scene()));
+}
+
+TEST(Scene, DocsDescribeEveryKey) {
+  std::ifstream in(repo_root() / "docs" / "scenes.md");
+  ASSERT_TRUE(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  for (const std::string& key : scene_keys())
+    EXPECT_NE(text.str().find("`" + key + "`"), std::string::npos) << key;
+}
+
+// ---- Validation: each message names its key and range ------------------------------------
+
+TEST(SceneValidation, PoissonRatioBounds) {
+  Scene s = default_scene();
+  s.material.poisson_ratio = 0.5;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }), "material.poisson_ratio = 0.5 must be in (-1, 0.5)");
+  s.material.poisson_ratio = -1.0;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }), "material.poisson_ratio = -1 must be in (-1, 0.5)");
+  // Just inside the bound passes; just outside prints all digits, not a rounded "0.5".
+  s.material.poisson_ratio = std::nextafter(0.5, 0.0);
+  EXPECT_NO_THROW(validate_scene(s));
+  s.material.poisson_ratio = std::nextafter(0.5, 1.0);
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("0.5000000000000001 must be in (-1, 0.5)"),
+            std::string::npos);
+}
+
+TEST(SceneValidation, ThicknessMustBePositive) {
+  Scene s = default_scene();
+  s.thickness = ConstantThickness{-0.1};
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness = -0.1 must be"), std::string::npos);
+  s.thickness = ConstantThickness{0.0};
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness = 0 must be finite and > 0"),
+            std::string::npos);
+  s.thickness = LinearThickness{0.02, 0.0};
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness.rim = 0 must be"), std::string::npos);
+  s.thickness = LinearThickness{-1.0, 0.02};
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness.center = -1 must be"), std::string::npos);
+}
+
+TEST(SceneValidation, InnerRadiusOfARing) {
+  Scene s = default_scene();
+  s.geometry.shape = SceneShape::Ring;
+  s.geometry.inner_radius = 1.2;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "geometry.inner_radius = 1.2 must be in (0, geometry.radius = 1)");
+  s.geometry.inner_radius = 1.0;
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("geometry.inner_radius = 1 must be in (0, "),
+            std::string::npos);
+  s.geometry.inner_radius = 0.0;
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("geometry.inner_radius = 0 must be in (0, "),
+            std::string::npos);
+  s.geometry.inner_radius = -0.5;
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("geometry.inner_radius = -0.5"), std::string::npos);
+  // A disc ignores the inner radius.
+  s.geometry.shape = SceneShape::Disc;
+  EXPECT_NO_THROW(validate_scene(s));
+}
+
+TEST(SceneValidation, MeshAndContinuationRanges) {
+  const auto message = [](auto change) {
+    Scene s = default_scene();
+    change(s);
+    return error_of([&] { validate_scene(s); });
+  };
+  EXPECT_EQ(message([](Scene& s) { s.mesh.rings = 1; }), "mesh.rings = 1 must be >= 2");
+  EXPECT_EQ(message([](Scene& s) { s.mesh.quadrature_degree = 7; }),
+            "mesh.quadrature_degree = 7 must be in {1, ..., 6}");
+  EXPECT_EQ(message([](Scene& s) { s.mesh.quadrature_degree = 0; }),
+            "mesh.quadrature_degree = 0 must be in {1, ..., 6}");
+  EXPECT_EQ(message([](Scene& s) { s.mesh.grading_exponent = 0.5; }),
+            "mesh.grading_exponent = 0.5 must be finite and >= 1");
+  EXPECT_EQ(message([](Scene& s) { s.mesh.min_spacing = -0.01; }),
+            "mesh.min_spacing = -0.01 must be finite and >= 0");
+  EXPECT_EQ(message([](Scene& s) { s.mesh.radial_layers = 0; }), "mesh.radial_layers = 0 must be >= 1");
+  EXPECT_EQ(message([](Scene& s) { s.material.youngs_modulus = 0.0; }),
+            "material.youngs_modulus = 0 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.geometry.radius = -1.0; }),
+            "geometry.radius = -1 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.physics.contact_distance = 0.0; }),
+            "physics.contact_distance = 0 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.mode = 1; }), "continuation.mode = 1 must be >= 2");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.max_step = 0.0; }),
+            "continuation.max_step = 0 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.min_step = 0.2; }),
+            "continuation.min_step = 0.2 must be in (0, continuation.max_step = 0.1]");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.phi_start = 4.0; }),
+            "continuation.phi_start = 4 must be in [continuation.phi_min = 0, continuation.phi_max = 3.73]");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.phi_max = 0.0; }),
+            "continuation.phi_min = 0 must be < continuation.phi_max = 0");
+  EXPECT_EQ(message([](Scene& s) { s.continuation.perturbation_amplitude = -1e-3; }),
+            "continuation.perturbation_amplitude = -0.001 must be finite and >= 0");
+  EXPECT_EQ(message([](Scene& s) { s.output.snapshot_every = 0; }), "output.snapshot_every = 0 must be >= 1");
+  EXPECT_EQ(message([](Scene& s) { s.output.directory.clear(); }), "output.directory must not be empty");
+  EXPECT_EQ(message([](Scene& s) { s.growth.center.y() = NAN; }), "growth.center[1] = nan must be finite");
+}
+
+// ---- Reading errors ----------------------------------------------------------------------
+
+TEST_F(SceneFileTest, RangeErrorsInAFileNameTheFileAndKey) {
+  const std::string path = write("nu.json", R"({"material": {"poisson_ratio": 0.5}})");
+  const std::string e = error_of([&] { read_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("material.poisson_ratio = 0.5 must be in (-1, 0.5)"), std::string::npos) << e;
+
+  const std::string ring = write("ring.json", R"({"geometry": {"shape": "ring", "inner_radius": 1.2}})");
+  EXPECT_NE(error_of([&] { read_scene(ring); }).find("geometry.inner_radius = 1.2 must be in (0, geometry.radius = 1)"),
+            std::string::npos);
+  const std::string rings = write("rings.json", R"({"mesh": {"rings": 1}})");
+  EXPECT_NE(error_of([&] { read_scene(rings); }).find("mesh.rings = 1 must be >= 2"), std::string::npos);
+}
+
+TEST_F(SceneFileTest, UnknownKeysAreErrors) {
+  const std::string e = error_of([&] { read_scene(write("u.json", R"({"mesh": {"ringz": 20}})")); });
+  EXPECT_NE(e.find("unknown key 'mesh.ringz'"), std::string::npos) << e;
+  EXPECT_NE(e.find("rings, radial_layers"), std::string::npos) << e;  // lists the allowed keys
+  EXPECT_NE(error_of([&] { read_scene(write("t.json", R"({"meshes": {}})")); }).find("unknown key 'meshes'"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              read_scene(write("l.json", R"({"thickness": {"profile": "linear", "center": 0.02, "rim": 0.01, "slope": 1}})"));
+            }).find("unknown key 'thickness.slope'"),
+            std::string::npos);
+}
+
+TEST_F(SceneFileTest, WrongTypesAreErrors) {
+  const auto e = [&](const std::string& text) { return error_of([&] { read_scene(write("w.json", text)); }); };
+  EXPECT_NE(e(R"({"mesh": {"rings": "24"}})").find("mesh.rings must be an integer"), std::string::npos);
+  EXPECT_NE(e(R"({"mesh": {"rings": 24.5}})").find("mesh.rings must be an integer"), std::string::npos);
+  EXPECT_NE(e(R"({"mesh": {"rings": 3000000000}})").find("mesh.rings = 3000000000 must fit"), std::string::npos);
+  EXPECT_NE(e(R"({"mesh": 3})").find("mesh must be an object"), std::string::npos);
+  EXPECT_NE(e(R"({"material": {"poisson_ratio": "0.3"}})").find("material.poisson_ratio must be a number"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"physics": {"contact": 1}})").find("physics.contact must be true or false"), std::string::npos);
+  EXPECT_NE(e(R"({"growth": {"center": [0]}})").find("growth.center must be an array of two numbers"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"geometry": {"shape": "square"}})").find(R"(geometry.shape = "square" must be one of "disc", "ring")"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"continuation": {"seed": -1}})").find("continuation.seed must be an integer in [0, 4294967295]"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"thickness": "thin"})").find("thickness must be a number or an object"), std::string::npos);
+  EXPECT_NE(e(R"({"thickness": {"profile": "linear", "center": 0.02}})").find("thickness.rim is required"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"thickness": {"profile": "cubic"}})").find(R"(thickness.profile = "cubic" must be one of)"),
+            std::string::npos);
+  EXPECT_NE(e(R"([1, 2])").find("top level must be a JSON object"), std::string::npos);
+}
+
+TEST_F(SceneFileTest, MalformedJsonNamesFileAndPosition) {
+  const std::string path = write("bad.json", "{\n  \"mesh\": {\"rings\": 20,}\n}\n");
+  const std::string e = error_of([&] { read_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("malformed JSON"), std::string::npos) << e;
+  EXPECT_NE(e.find("line 2"), std::string::npos) << e;  // nlohmann's position of the error
+}
+
+TEST_F(SceneFileTest, MissingFileNamesThePath) {
+  const std::string path = (dir_ / "no_such_scene.json").string();
+  const std::string e = error_of([&] { read_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("no such file"), std::string::npos) << e;
+}
+
+// ---- Overrides ---------------------------------------------------------------------------
+
+TEST(SceneOverride, SetsTypedValuesFromText) {
+  Scene s = default_scene();
+  apply_override(s, "thickness", "0.005");
+  apply_override(s, "geometry.shape", "ring");
+  apply_override(s, "geometry.inner_radius", "0.4");
+  apply_override(s, "continuation.phi_max", "7.5");
+  apply_override(s, "continuation.mode", "3");
+  apply_override(s, "continuation.direction", "backward");
+  apply_override(s, "mesh.rings", "16");
+  apply_override(s, "physics.contact", "true");
+  apply_override(s, "growth.center", "[0.1, -0.2]");
+  apply_override(s, "output.directory", "123");  // a string key keeps digits as text
+  EXPECT_EQ(std::get<ConstantThickness>(s.thickness).value, 0.005);
+  EXPECT_EQ(s.geometry.shape, SceneShape::Ring);
+  EXPECT_EQ(s.geometry.inner_radius, 0.4);
+  EXPECT_EQ(s.continuation.phi_max, 7.5);
+  EXPECT_EQ(s.continuation.mode, 3);
+  EXPECT_EQ(s.continuation.direction, ContinuationDirection::Backward);
+  EXPECT_EQ(s.mesh.rings, 16);
+  EXPECT_TRUE(s.physics.contact);
+  EXPECT_EQ(s.growth.center, Eigen::Vector2d(0.1, -0.2));
+  EXPECT_EQ(s.output.directory, "123");
+  EXPECT_NO_THROW(validate_scene(s));
+
+  apply_override(s, "thickness", R"({"profile": "linear", "center": 0.02, "rim": 0.01})");
+  ASSERT_TRUE(std::holds_alternative<LinearThickness>(s.thickness));
+  EXPECT_EQ(std::get<LinearThickness>(s.thickness).rim, 0.01);
+}
+
+TEST(SceneOverride, ErrorsNameTheKey) {
+  Scene s = default_scene();
+  EXPECT_NE(error_of([&] { apply_override(s, "mesh.ringz", "3"); }).find("unknown key 'mesh.ringz'"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { apply_override(s, "mesh", "3"); }).find("'mesh' is a section"), std::string::npos);
+  EXPECT_NE(error_of([&] { apply_override(s, "mesh.rings", "abc"); }).find("mesh.rings must be an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { apply_override(s, "mesh.rings", "2.5"); }).find("mesh.rings must be an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { apply_override(s, "continuation.direction", "sideways"); })
+                .find("continuation.direction = \"sideways\" must be one of \"forward\", \"backward\""),
+            std::string::npos);
+  // Ranges are checked afterwards, by validate_scene.
+  EXPECT_NO_THROW(apply_override(s, "material.poisson_ratio", "0.5"));
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("material.poisson_ratio"), std::string::npos);
+}
+
+// ---- Builders ----------------------------------------------------------------------------
+
+TEST(SceneBuilders, LinearThicknessProfileEndValues) {
+  Scene s = default_scene();
+  s.geometry.radius = 2.0;
+  s.thickness = LinearThickness{0.03, 0.01};
+  s.growth.center = {0.5, 0.0};  // the profile is about the sheet's centre, not the growth's
+  const ThicknessField h = scene_model_settings(s).thickness;
+  // h0 + (h1 - h0) r / R; tolerance: a few roundings of O(0.03) numbers.
+  EXPECT_NEAR(h(Eigen::Vector3d(0.0, 0.0, 0.0)), 0.03, 1e-15);
+  EXPECT_NEAR(h(Eigen::Vector3d(0.0, 2.0, 0.0)), 0.01, 1e-15);
+  EXPECT_NEAR(h(Eigen::Vector3d(-0.6, 0.8, 0.0)), 0.02, 1e-15);  // r = 1 = R/2: the mean
+  EXPECT_NEAR(h(Eigen::Vector3d(2.1, 0.0, 0.0)), 0.01, 1e-15);    // clamped beyond the rim
+  EXPECT_NEAR(thickness_at_radius(s.thickness, 1.0, 2.0), 0.02, 1e-15);
+  EXPECT_EQ(resolved_min_spacing(s), 0.015);  // half the centre thickness
+}
+
+TEST(SceneBuilders, SmallDiscSceneBuildsAValidShellModel) {
+  Scene s = default_scene();
+  s.mesh.rings = 4;
+  s.material.youngs_modulus = 2e4;
+  s.growth.center = {0.0, 0.0};
+  const TriangleMesh mesh = scene_mesh(s);
+  // make_disc_mesh counts: 1 + 3 (N+1)(N+2) vertices including the ghost ring.
+  EXPECT_EQ(mesh.vertices.rows(), 1 + 3 * 5 * 6);
+  ShellModel model(mesh, scene_model_settings(s));
+  EXPECT_EQ(model.num_elements(), 6 * 4 * 4);
+  EXPECT_EQ(model.settings().material.youngs_modulus, 2e4);
+  EXPECT_EQ(model.settings().quadrature_degree, 2);
+  // The flat, ungrown reference is stress-free.
+  const Eigen::VectorXd x = model.reference_positions();
+  EXPECT_NEAR(model.energy_breakdown(x).total(), 0.0, 1e-20);
+  // Grown by phi_e but held flat, every point has abar = diag(1, lambda^2) and a = diag(1, 1)
+  // in its (e_r, e_phi) frame, so eps = diag(0, (1 - lambda^2) / (2 lambda^2)) and U_s = eps^2
+  // exactly, and E_s = Y h / (2 (1 - nu^2)) eps^2 (grown area) with grown area = lambda times
+  // the current one. That checks that Y, nu, h and the growth centre reached the model; both
+  // identities hold pointwise, so only rounding (relative 1e-12) separates the sides.
+  const double phi = 0.5;
+  model.set_excess_angle(phi);
+  const ShellEnergyBreakdown e = model.energy_breakdown(x);
+  const double lambda = circumferential_stretch(phi);
+  const double eps = (1.0 - lambda * lambda) / (2.0 * lambda * lambda);
+  const double expected = 2e4 * 0.02 / (2.0 * (1.0 - 0.09)) * eps * eps * e.grown_area;
+  EXPECT_NEAR(e.stretching / expected, 1.0, 1e-12) << e.stretching;
+  EXPECT_NEAR(e.grown_area / e.current_area, lambda, 1e-12);
+  EXPECT_NEAR(e.bending, 0.0, 1e-20);
+}
+
+TEST(SceneBuilders, SmallRingSceneBuildsAValidShellModel) {
+  Scene s = default_scene();
+  s.geometry.shape = SceneShape::Ring;
+  s.geometry.inner_radius = 0.5;
+  s.mesh.radial_layers = 3;
+  s.thickness = LinearThickness{0.02, 0.01};
+  const TriangleMesh mesh = scene_mesh(s);
+  const int m = annulus_vertices_per_ring({0.5, 1.0, 3, Eigen::Vector2d::Zero()});
+  EXPECT_EQ(mesh.vertices.rows(), m * (3 + 3));
+  // Inner rim vertices (ring 0) lie on r = R_i to rounding.
+  for (int i = 0; i < m; ++i) EXPECT_NEAR(mesh.vertices.row(m + i).head<2>().norm(), 0.5, 1e-14);
+  ShellModel model(mesh, scene_model_settings(s));
+  EXPECT_EQ(model.num_elements(), 2 * m * 3);
+  // The model's thickness at every quadrature point is the profile at that point's radius
+  // (0.02 + (0.01 - 0.02) r, r in [0.5, 1]), so it spans (0.01, 0.015) strictly inside.
+  const ReferenceQuadrature& q = model.reference();
+  double h_min = 1.0, h_max = 0.0;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    const double r = q.position(i).head<2>().norm();
+    EXPECT_NEAR(q.thickness(i), 0.02 - 0.01 * std::min(r, 1.0), 1e-15) << i;
+    h_min = std::min(h_min, q.thickness(i));
+    h_max = std::max(h_max, q.thickness(i));
+  }
+  EXPECT_GT(h_min, 0.01);
+  EXPECT_LT(h_max, 0.015);
+}
+
+TEST(SceneBuilders, InvalidSceneIsRejectedByTheBuilders) {
+  Scene s = default_scene();
+  s.mesh.quadrature_degree = 7;
+  EXPECT_NE(error_of([&] { scene_model_settings(s); }).find("mesh.quadrature_degree"), std::string::npos);
+  EXPECT_NE(error_of([&] { scene_mesh(s); }).find("mesh.quadrature_degree"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace growshell
