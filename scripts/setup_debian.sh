@@ -12,6 +12,7 @@ packages=(
   libmetis-dev         # fill-reducing ordering used by CHOLMOD
   libopenblas-dev      # optimised BLAS/LAPACK behind CHOLMOD's supernodal factorisation
   coinor-libipopt-dev  # interior-point optimiser for the contact layer
+  libmumps-seq-dev     # sequential MUMPS: symmetric indefinite LDL^T with inertia (stability)
   nlohmann-json3-dev   # JSON parameter and result files
   libgtest-dev         # unit tests
   libbenchmark-dev     # micro-benchmarks

@@ -1,0 +1,289 @@
+#include "solvers/continuation/pseudo_arclength.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "solvers/newton/fixed_dof_elimination.hpp"
+#include "solvers/stability/symmetric_indefinite_factorization.hpp"
+
+namespace growshell {
+namespace {
+
+/// A point (x, lambda) with the unit tangent (in the weighted norm) of the branch there.
+struct TangentPoint {
+  Eigen::VectorXd x;
+  double lambda = 0.0;
+  Eigen::VectorXd tx;
+  double tl = 0.0;
+};
+
+/// Newton on the bordered system and the tangent/inertia at converged points. Owns the
+/// Hessian buffer and the factorisation (analysed once).
+class BranchSolver {
+ public:
+  BranchSolver(ParametrizedObjective& family, const std::vector<Eigen::Index>& fixed_dofs,
+               const ArclengthOptions& options)
+      : family_(family),
+        hessian_(family.hessian_pattern()),
+        fixed_(hessian_, fixed_dofs),
+        options_(options),
+        weight_(options.state_weight / static_cast<double>(std::max<Eigen::Index>(1, fixed_.free_count()))) {
+    factorization_.analyze(hessian_);
+  }
+
+  double weight() const { return weight_; }
+
+  /// Weighted inner product of two tangents.
+  double dot(const Eigen::VectorXd& ax, double al, const Eigen::VectorXd& bx, double bl) const {
+    return weight_ * ax.dot(bx) + al * bl;
+  }
+
+  /// Linearises at (x, lambda): gradient (fixed entries zeroed), factorised Hessian and
+  /// d(gradient)/d(lambda). False if anything is not finite or the factorisation failed.
+  bool linearize(const Eigen::VectorXd& x, double lambda) {
+    if (!std::isfinite(lambda) || !x.allFinite()) return false;
+    try {
+      family_.set_parameter(lambda);  // a diverging corrector may leave the family's domain
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
+    const double e = family_.evaluate(x, &gradient_, &hessian_);
+    if (!std::isfinite(e) || !gradient_.allFinite()) return false;
+    fixed_.zero_fixed(gradient_);
+    fixed_.apply(hessian_);
+    const Eigen::Map<const Eigen::VectorXd> values(hessian_.valuePtr(), hessian_.nonZeros());
+    if (!values.allFinite()) return false;
+    try {
+      factorization_.factorize(hessian_);
+    } catch (const std::runtime_error&) {
+      return false;
+    }
+    if (factorization_.zero_pivots() > 0) return false;
+    parameter_derivative_ = family_.gradient_parameter_derivative(x);
+    fixed_.zero_fixed(parameter_derivative_);
+    return parameter_derivative_.allFinite();
+  }
+
+  /// Unit tangent at the last linearisation, oriented along (rx, rl).
+  void tangent(const Eigen::VectorXd& rx, double rl, Eigen::VectorXd& tx, double& tl) const {
+    Eigen::VectorXd b = factorization_.solve(parameter_derivative_);
+    fixed_.zero_fixed(b);
+    const double s = 1.0 / std::sqrt(weight_ * b.squaredNorm() + 1.0);
+    tx = -s * b;
+    tl = s;
+    if (dot(tx, tl, rx, rl) < 0.0) {
+      tx = -tx;
+      tl = -tl;
+    }
+  }
+
+  int negative_eigenvalues() const { return factorization_.negative_eigenvalues(); }
+
+  /// H^-1 v at the last linearisation (fixed entries zero).
+  Eigen::VectorXd solve_hessian(Eigen::VectorXd v) const {
+    fixed_.zero_fixed(v);
+    Eigen::VectorXd y = factorization_.solve(v);
+    fixed_.zero_fixed(y);
+    return y;
+  }
+
+  /// Corrects the predictor (xp, lp) on the hyperplane through it orthogonal to (tx, tl).
+  /// On success fills `sample` (state, inertia, tangent oriented along (tx, tl)).
+  bool correct(const Eigen::VectorXd& xp, double lp, const Eigen::VectorXd& tx, double tl,
+               BranchSample& sample) {
+    Eigen::VectorXd x = xp;
+    double lambda = lp;
+    for (int it = 0; it <= options_.max_corrector_iterations; ++it) {
+      if (!linearize(x, lambda)) return false;
+      const double residual = fixed_.free_inf_norm(gradient_);
+      if (residual <= options_.gradient_tolerance) {
+        sample.x = x;
+        sample.parameter = lambda;
+        sample.corrector_iterations = it;
+        sample.negative_eigenvalues = negative_eigenvalues();
+        tangent(tx, tl, sample.tangent_state, sample.tangent_parameter);
+        return true;
+      }
+      if (it == options_.max_corrector_iterations) return false;
+      Eigen::VectorXd a = factorization_.solve(gradient_);
+      Eigen::VectorXd b = factorization_.solve(parameter_derivative_);
+      fixed_.zero_fixed(a);
+      fixed_.zero_fixed(b);
+      const double c = weight_ * tx.dot(x - xp) + tl * (lambda - lp);
+      const double denominator = tl - weight_ * tx.dot(b);
+      if (!(std::abs(denominator) > 0.0)) return false;
+      const double dl = (weight_ * tx.dot(a) - c) / denominator;
+      x -= a + dl * b;
+      lambda += dl;
+      if (!x.allFinite() || !std::isfinite(lambda)) return false;
+    }
+    return false;
+  }
+
+ private:
+  ParametrizedObjective& family_;
+  Eigen::SparseMatrix<double> hessian_;
+  FixedDofElimination fixed_;
+  ArclengthOptions options_;
+  double weight_;
+  SymmetricIndefiniteFactorization factorization_;
+  Eigen::VectorXd gradient_;
+  Eigen::VectorXd parameter_derivative_;
+};
+
+}  // namespace
+
+const char* to_string(SpecialPoint::Kind kind) {
+  return kind == SpecialPoint::Kind::Fold ? "fold" : "branch_point";
+}
+
+BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                         double lambda0, int direction, const std::vector<Eigen::Index>& fixed_dofs,
+                         const ArclengthOptions& options,
+                         const std::function<void(const BranchSample&)>& on_sample,
+                         const std::function<void(const SpecialPoint&)>& on_special) {
+  return trace_branch_along(family, x0, lambda0, Eigen::VectorXd::Zero(x0.size()),
+                            direction >= 0 ? 1.0 : -1.0, fixed_dofs, options, on_sample,
+                            on_special);
+}
+
+Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
+                              double lambda, const Eigen::Ref<const Eigen::VectorXd>& hint,
+                              const std::vector<Eigen::Index>& fixed_dofs,
+                              const ArclengthOptions& options, int iterations) {
+  BranchSolver solver(family, fixed_dofs, options);
+  if (!solver.linearize(x, lambda))
+    throw std::runtime_error("critical_mode: the Hessian cannot be factorised at lambda = " +
+                             std::to_string(lambda));
+  Eigen::VectorXd y = hint;
+  for (int k = 0; k < iterations; ++k) {
+    y = solver.solve_hessian(y);
+    const double norm = std::sqrt(solver.weight() * y.squaredNorm());
+    if (!(norm > 0.0) || !std::isfinite(norm))
+      throw std::runtime_error("critical_mode: inverse iteration broke down at lambda = " +
+                               std::to_string(lambda) + " (hint orthogonal to the range?)");
+    y /= norm;
+  }
+  return y;
+}
+
+BranchTrace trace_branch_along(ParametrizedObjective& family,
+                               const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+                               const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                               double direction_parameter,
+                               const std::vector<Eigen::Index>& fixed_dofs,
+                               const ArclengthOptions& options,
+                               const std::function<void(const BranchSample&)>& on_sample,
+                               const std::function<void(const SpecialPoint&)>& on_special) {
+  if (!(options.min_step > 0.0 && options.min_step <= options.initial_step &&
+        options.initial_step <= options.max_step))
+    throw std::invalid_argument("ArclengthOptions: need 0 < min_step <= initial_step <= max_step");
+  if (!(options.gradient_tolerance > 0.0))
+    throw std::invalid_argument("ArclengthOptions: gradient_tolerance must be > 0");
+  if (x0.size() != family.dimension())
+    throw std::invalid_argument("trace_branch: x0 has the wrong size");
+  BranchSolver solver(family, fixed_dofs, options);
+  BranchTrace out;
+
+  // The start: correct (x0, lambda0) on the hyperplane orthogonal to the given direction and
+  // orient its tangent along that direction.
+  {
+    const Eigen::VectorXd dx = direction_state;
+    const double norm = std::sqrt(solver.dot(dx, direction_parameter, dx, direction_parameter));
+    if (!(norm > 0.0)) throw std::invalid_argument("trace_branch_along: zero direction");
+    BranchSample start;
+    if (!solver.correct(x0, lambda0, dx / norm, direction_parameter / norm, start)) {
+      out.last.x = x0;
+      out.last.parameter = lambda0;
+      out.message = "the start is not an equilibrium the corrector can converge to";
+      return out;
+    }
+    out.last = std::move(start);
+    if (on_sample) on_sample(out.last);
+  }
+
+  double step = options.initial_step;
+  const double cos_max = std::cos(options.max_tangent_angle);
+  while (out.steps < options.max_steps) {
+    const BranchSample& p = out.last;
+    if (p.parameter < options.parameter_min || p.parameter > options.parameter_max) {
+      out.reached_bound = true;
+      out.message = "reached the parameter bound";
+      family.set_parameter(p.parameter);
+      return out;
+    }
+    BranchSample next;
+    const Eigen::VectorXd xp = p.x + step * p.tangent_state;
+    const double lp = p.parameter + step * p.tangent_parameter;
+    const bool ok = solver.correct(xp, lp, p.tangent_state, p.tangent_parameter, next) &&
+                    solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
+                               p.tangent_parameter) >= cos_max;
+    if (!ok) {
+      ++out.failed_steps;
+      step /= 2;
+      if (step < options.min_step) {
+        out.message = "step below min_step at parameter " + std::to_string(p.parameter);
+        family.set_parameter(p.parameter);
+        return out;
+      }
+      continue;
+    }
+    next.arclength = p.arclength + step;
+
+    if (next.negative_eigenvalues != p.negative_eigenvalues) {
+      // Bisect the step in arclength, keeping the count change inside [s_lo, s_hi], until
+      // lambda differs by less than the tolerance across the bracket.
+      double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter;
+      BranchSample hi = next;
+      for (int k = 0; k < 60 && std::abs(hi.parameter - lambda_lo) > options.special_point_tolerance;
+           ++k) {
+        // The midpoint may sit exactly on the singular point (zero pivot): then a point a
+        // little off the middle serves as well.
+        double s_mid = 0.5 * (s_lo + s_hi);
+        BranchSample mid;
+        const auto corrected_at = [&](double s) {
+          return solver.correct(p.x + s * p.tangent_state, p.parameter + s * p.tangent_parameter,
+                                p.tangent_state, p.tangent_parameter, mid);
+        };
+        if (!corrected_at(s_mid)) {
+          s_mid += 0.01 * (s_hi - s_lo);
+          if (!corrected_at(s_mid)) break;
+        }
+        if (mid.negative_eigenvalues == p.negative_eigenvalues) {
+          s_lo = s_mid;
+          lambda_lo = mid.parameter;
+        } else {
+          s_hi = s_mid;
+          hi = std::move(mid);
+        }
+      }
+      SpecialPoint sp;
+      // A fold turns the branch back in lambda; a branch point does not.
+      sp.kind = (p.tangent_parameter * next.tangent_parameter < 0.0) ? SpecialPoint::Kind::Fold
+                                                                     : SpecialPoint::Kind::BranchPoint;
+      sp.parameter = 0.5 * (hi.parameter + lambda_lo);
+      sp.x = hi.x;
+      sp.negative_before = p.negative_eigenvalues;
+      sp.negative_after = next.negative_eigenvalues;
+      sp.multiplicity = std::abs(next.negative_eigenvalues - p.negative_eigenvalues);
+      sp.bracket_width = std::abs(hi.parameter - lambda_lo);
+      out.special_points.push_back(sp);
+      if (on_special) on_special(sp);
+    }
+
+    out.last = std::move(next);
+    ++out.steps;
+    if (on_sample) on_sample(out.last);
+    const double factor =
+        std::clamp(static_cast<double>(options.target_iterations) /
+                       std::max(1, out.last.corrector_iterations),
+                   0.5, 2.0);
+    step = std::min(options.max_step, step * factor);
+  }
+  out.reached_bound = true;
+  out.message = "reached max_steps";
+  return out;
+}
+
+}  // namespace growshell

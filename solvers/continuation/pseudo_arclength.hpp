@@ -1,0 +1,100 @@
+#pragma once
+/// \file
+/// Pseudo-arclength continuation of equilibria g(x; lambda) = 0 of a parametrised energy,
+/// through folds and along unstable branches, with stability (negative eigenvalue count of
+/// the Hessian) and located special points. Algorithm: docs/continuation.md.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "solvers/continuation/parametrized_objective.hpp"
+
+namespace growshell {
+
+/// Step control and tolerances of trace_branch.
+struct ArclengthOptions {
+  double initial_step = 0.05;  ///< first arclength step
+  double min_step = 1e-7;      ///< a step that fails below this ends the trace
+  double max_step = 0.5;
+  int target_iterations = 4;   ///< corrector iterations the step control aims at
+  int max_corrector_iterations = 15;
+  double max_tangent_angle = 0.3;  ///< radians between successive tangents
+  double gradient_tolerance = 1e-8;  ///< absolute, inf-norm of the free gradient
+  /// Weight of the state in the arclength norm: |du|^2 = state_weight |dx|^2 / n + dlambda^2.
+  double state_weight = 1.0;
+  double special_point_tolerance = 1e-6;  ///< |dlambda| to which special points are located
+  double parameter_min = -1e300, parameter_max = 1e300;  ///< the trace stops outside
+  int max_steps = 10000;
+};
+
+/// A converged point of a branch.
+struct BranchSample {
+  double parameter = 0.0;
+  Eigen::VectorXd x;
+  double arclength = 0.0;
+  int negative_eigenvalues = 0;  ///< of the Hessian with the fixed dofs removed
+  int corrector_iterations = 0;
+  Eigen::VectorXd tangent_state;  ///< dx/ds
+  double tangent_parameter = 0.0;  ///< dlambda/ds
+};
+
+/// A change of the negative eigenvalue count between two samples, located in lambda.
+struct SpecialPoint {
+  enum class Kind { Fold, BranchPoint };
+  Kind kind = Kind::Fold;
+  double parameter = 0.0;
+  Eigen::VectorXd x;
+  int negative_before = 0;
+  int negative_after = 0;
+  int multiplicity = 0;  ///< |change of the count|
+  double bracket_width = 0.0;  ///< |dlambda| of the final bracket
+};
+
+const char* to_string(SpecialPoint::Kind kind);
+
+struct BranchTrace {
+  std::vector<SpecialPoint> special_points;
+  BranchSample last;       ///< last converged sample (the start if nothing converged)
+  bool reached_bound = false;  ///< stopped at parameter_min / parameter_max / max_steps
+  std::string message;     ///< why the trace ended
+  int steps = 0;
+  int failed_steps = 0;
+};
+
+/// Traces the branch through the equilibrium (x0, lambda0) — x0 must satisfy g(x0; lambda0)
+/// ~ 0 — starting in the direction of increasing lambda if direction > 0, decreasing
+/// otherwise. Each converged sample goes to on_sample as soon as it converges; special points
+/// go to on_special. The trace never dies on one bad step: failed steps are halved down to
+/// options.min_step, and the result always holds the last converged sample.
+BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                         double lambda0, int direction, const std::vector<Eigen::Index>& fixed_dofs,
+                         const ArclengthOptions& options,
+                         const std::function<void(const BranchSample&)>& on_sample = {},
+                         const std::function<void(const SpecialPoint&)>& on_special = {});
+
+/// As trace_branch, but the start is corrected on the hyperplane through (x0, lambda0)
+/// orthogonal to the direction (direction_state, direction_parameter), and the branch is
+/// followed in that direction. Used after branch switching, where the fixed-lambda correction
+/// of trace_branch could slide back onto the branch left behind.
+BranchTrace trace_branch_along(ParametrizedObjective& family,
+                               const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+                               const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                               double direction_parameter,
+                               const std::vector<Eigen::Index>& fixed_dofs,
+                               const ArclengthOptions& options,
+                               const std::function<void(const BranchSample&)>& on_sample = {},
+                               const std::function<void(const SpecialPoint&)>& on_special = {});
+
+/// Critical mode at a branch point: a null vector of the Hessian at (x, lambda), by inverse
+/// iteration started from `hint` (e.g. the out-of-plane field cos(n theta) of the n-fold
+/// mode; the iteration stays in the hint's symmetry class, which picks one of a degenerate
+/// pair). Returns the mode scaled to unit weighted norm, with fixed dofs zero; throws
+/// std::runtime_error if the Hessian cannot be factorised there.
+Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
+                              double lambda, const Eigen::Ref<const Eigen::VectorXd>& hint,
+                              const std::vector<Eigen::Index>& fixed_dofs,
+                              const ArclengthOptions& options, int iterations = 4);
+
+}  // namespace growshell

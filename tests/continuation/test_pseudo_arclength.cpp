@@ -1,0 +1,242 @@
+// Pseudo-arclength continuation on problems with known branches: a fold pair (S-curve), a
+// simple and a double pitchfork on the trivial branch; then the flat branch of the shell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "libshell/analysis/rim_folds.hpp"
+#include "libshell/mesh/disc_mesh.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+namespace growshell {
+namespace {
+
+/// E = sum over the first `m` dofs of a nonlinear potential P(y, lambda) with y = the m
+/// "active" dofs, plus sum_i k_i/2 (x_i - c_i x_(i % m))^2 over passive dofs, which couple
+/// sparsely and are stable, so the active block's inertia is the whole Hessian's.
+class ToyFamily : public ParametrizedObjective {
+ public:
+  enum class Kind { SCurve, Pitchfork, DoublePitchfork };
+  ToyFamily(Kind kind, int passive) : kind_(kind), m_(kind == Kind::DoublePitchfork ? 2 : 1), n_(m_ + passive) {}
+  Eigen::Index dimension() const override { return n_; }
+  Eigen::SparseMatrix<double> hessian_pattern() const override {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < n_; ++i) t.emplace_back(i, i, 0.0);
+    for (int i = 0; i < m_; ++i)
+      for (int j = i + 1; j < m_; ++j) t.emplace_back(i, j, 0.0);
+    for (int i = m_; i < n_; ++i) t.emplace_back(anchor(i), i, 0.0);
+    Eigen::SparseMatrix<double> H(n_, n_);
+    H.setFromTriplets(t.begin(), t.end());
+    H.makeCompressed();
+    return H;
+  }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* H) override {
+    double E = 0.0;
+    Eigen::VectorXd grad = Eigen::VectorXd::Zero(n_);
+    Eigen::MatrixXd Ha = Eigen::MatrixXd::Zero(m_, m_);
+    if (kind_ == Kind::SCurve) {
+      const double y = x(0);
+      E = y * y * y * y / 4 - y * y / 2 + lambda_ * y;
+      grad(0) = y * y * y - y + lambda_;
+      Ha(0, 0) = 3 * y * y - 1;
+    } else {
+      double r2 = 0.0;
+      for (int i = 0; i < m_; ++i) r2 += x(i) * x(i);
+      E = r2 * r2 / 4 - lambda_ * r2 / 2;
+      for (int i = 0; i < m_; ++i) {
+        grad(i) = (r2 - lambda_) * x(i);
+        for (int j = 0; j < m_; ++j) Ha(i, j) = 2 * x(i) * x(j) + (i == j ? r2 - lambda_ : 0.0);
+      }
+    }
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < m_; ++i)
+      for (int j = i; j < m_; ++j) t.emplace_back(i, j, Ha(i, j));
+    for (int i = m_; i < n_; ++i) {
+      const int a = anchor(i);
+      const double k = 1.0 + 0.1 * i, c = 0.5 + 0.01 * i, d = x(i) - c * x(a);
+      E += 0.5 * k * d * d;
+      grad(i) += k * d;
+      grad(a) -= k * c * d;
+      t.emplace_back(i, i, k);
+      t.emplace_back(a, a, k * c * c);
+      t.emplace_back(a, i, -k * c);
+    }
+    if (g) *g = grad;
+    if (H) {
+      Eigen::SparseMatrix<double> M(n_, n_);
+      M.setFromTriplets(t.begin(), t.end());
+      Eigen::SparseMatrix<double> P = hessian_pattern();
+      for (int col = 0; col < n_; ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(P, col); it; ++it)
+          H->coeffRef(it.row(), col) = M.coeff(it.row(), col);
+    }
+    return E;
+  }
+  void set_parameter(double lambda) override { lambda_ = lambda; }
+  double parameter() const override { return lambda_; }
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) override {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n_);
+    if (kind_ == Kind::SCurve) {
+      d(0) = 1.0;
+    } else {
+      for (int i = 0; i < m_; ++i) d(i) = -x(i);
+    }
+    return d;
+  }
+  /// Passive dofs at equilibrium with the active ones.
+  Eigen::VectorXd equilibrium_from_active(const Eigen::VectorXd& active) const {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n_);
+    x.head(m_) = active;
+    for (int i = m_; i < n_; ++i) x(i) = (0.5 + 0.01 * i) * x(anchor(i));
+    return x;
+  }
+
+ private:
+  int anchor(int i) const { return i % m_; }
+  Kind kind_;
+  int m_, n_;
+  double lambda_ = 0.0;
+};
+
+ArclengthOptions toy_options() {
+  ArclengthOptions o;
+  o.initial_step = 0.05;
+  o.max_step = 0.2;
+  o.gradient_tolerance = 1e-12;
+  o.parameter_min = -3.0;
+  o.parameter_max = 3.0;
+  return o;
+}
+
+TEST(PseudoArclength, PassesBothFoldsOfAnSCurveAndLocatesThem) {
+  ToyFamily family(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5, lambda0 = y0 * y0 * y0 - y0;  // lambda = y - y^3 => -(y^3 - y)
+  std::vector<BranchSample> samples;
+  const BranchTrace trace = trace_branch(
+      family, family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0)), -lambda0, -1, {},
+      toy_options(), [&](const BranchSample& s) { samples.push_back(s); });
+  ASSERT_EQ(trace.special_points.size(), 2u) << trace.message;
+  const double fold = 2.0 / (3.0 * std::sqrt(3.0));
+  EXPECT_EQ(trace.special_points[0].kind, SpecialPoint::Kind::Fold);
+  EXPECT_NEAR(trace.special_points[0].parameter, -fold, 1e-6);
+  EXPECT_EQ(trace.special_points[0].negative_before, 0);
+  EXPECT_EQ(trace.special_points[0].negative_after, 1);
+  EXPECT_EQ(trace.special_points[1].kind, SpecialPoint::Kind::Fold);
+  EXPECT_NEAR(trace.special_points[1].parameter, fold, 1e-6);
+  EXPECT_EQ(trace.special_points[1].negative_after, 0);
+  EXPECT_TRUE(trace.reached_bound);
+  // Every sample lies on the branch lambda = y - y^3 and its inertia matches 3y^2 - 1.
+  for (const BranchSample& s : samples) {
+    const double y = s.x(0);
+    EXPECT_NEAR(s.parameter, y - y * y * y, 1e-10);
+    EXPECT_EQ(s.negative_eigenvalues, 3 * y * y - 1 < 0 ? 1 : 0) << "y = " << y;
+  }
+}
+
+TEST(PseudoArclength, FindsTheBranchPointsOfSimpleAndDoublePitchforks) {
+  for (auto kind : {ToyFamily::Kind::Pitchfork, ToyFamily::Kind::DoublePitchfork}) {
+    ToyFamily family(kind, 5);
+    ArclengthOptions o = toy_options();
+    o.parameter_max = 1.0;
+    const BranchTrace trace =
+        trace_branch(family, Eigen::VectorXd::Zero(family.dimension()), -1.0, +1, {}, o);
+    ASSERT_EQ(trace.special_points.size(), 1u) << trace.message;
+    const SpecialPoint& sp = trace.special_points[0];
+    EXPECT_EQ(sp.kind, SpecialPoint::Kind::BranchPoint);
+    EXPECT_NEAR(sp.parameter, 0.0, 1e-6);
+    EXPECT_EQ(sp.multiplicity, kind == ToyFamily::Kind::Pitchfork ? 1 : 2);
+    EXPECT_LE(sp.bracket_width, 1e-6);
+  }
+}
+
+TEST(PseudoArclength, FlatBranchOfTheGrowingDiscLosesStabilityAtADoubleBranchPoint) {
+  // The flat disc under circumferential growth: in-plane equilibria until the first
+  // out-of-plane modes (n = 2, a pair cos/sin 2 theta) become unstable together.
+  DiscMeshOptions mo;
+  mo.rings = 6;
+  ShellModelSettings s;
+  s.thickness = constant_thickness(0.04);
+  ShellModel model(make_disc_mesh(mo), s);
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::MatrixX3d P =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+  const auto pinned = rigid_motion_pinned_dofs(P, model.sheet_vertices());
+  ShellGrowthFamily family(model);
+  ArclengthOptions o;
+  o.initial_step = 0.002;
+  o.max_step = 0.01;
+  o.gradient_tolerance = 1e-9 * model.natural_force_scale();
+  o.parameter_max = 0.05;
+  const BranchTrace trace = trace_branch(family, X, 0.0, +1, pinned, o);
+  ASSERT_FALSE(trace.special_points.empty()) << trace.message;
+  const SpecialPoint& first = trace.special_points.front();
+  EXPECT_EQ(first.kind, SpecialPoint::Kind::BranchPoint);
+  EXPECT_EQ(first.negative_before, 0);
+  EXPECT_EQ(first.multiplicity, 2) << "phi_e = " << first.parameter;
+  EXPECT_GT(first.parameter, 0.0);
+  EXPECT_LE(first.bracket_width, 1e-6);
+  std::printf("flat disc h = 0.04, 6 rings: first branch point at phi_e = %.7f (mult %d)\n",
+              first.parameter, first.multiplicity);
+}
+
+TEST(PseudoArclength, SwitchesFromTheFlatBranchOntoTheTwoAndThreeFoldCones) {
+  DiscMeshOptions mo;
+  mo.rings = 6;
+  ShellModelSettings s;
+  s.thickness = constant_thickness(0.04);
+  ShellModel model(make_disc_mesh(mo), s);
+  const Eigen::VectorXd X = model.reference_positions();
+  const Eigen::MatrixX3d P =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+  int rim_x = model.sheet_vertices().front(), rim_y = rim_x;
+  for (int v : model.sheet_vertices()) {
+    if (P(v, 0) > P(rim_x, 0)) rim_x = v;
+    if (P(v, 1) > P(rim_y, 1)) rim_y = v;
+  }
+  const auto pinned = rigid_motion_pinned_dofs(P, {model.sheet_vertices().front(), rim_x, rim_y});
+  ShellGrowthFamily family(model);
+  ArclengthOptions o;
+  o.initial_step = 0.002;
+  o.max_step = 0.02;
+  o.gradient_tolerance = 1e-9 * model.natural_force_scale();
+  o.parameter_max = 0.12;
+  const BranchTrace flat = trace_branch(family, X, 0.0, +1, pinned, o);
+  ASSERT_GE(flat.special_points.size(), 2u) << flat.message;
+  for (const SpecialPoint& sp : flat.special_points)
+    std::printf("flat branch: %s at phi_e = %.6f, negative %d -> %d\n", to_string(sp.kind),
+                sp.parameter, sp.negative_before, sp.negative_after);
+  for (int n : {2, 3}) {
+    // The n-th branch point: the one whose critical mode has n folds (n = 2 comes first).
+    const SpecialPoint& bp = flat.special_points[n - 2];
+    ASSERT_EQ(bp.kind, SpecialPoint::Kind::BranchPoint);
+    Eigen::VectorXd hint = Eigen::VectorXd::Zero(X.size());
+    for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
+      const double r = std::hypot(X(3 * v), X(3 * v + 1)), t = std::atan2(X(3 * v + 1), X(3 * v));
+      hint(3 * v + 2) = std::pow(r, n) * std::cos(n * t);
+    }
+    const Eigen::VectorXd mode = critical_mode(family, bp.x, bp.parameter, hint, pinned, o);
+    std::vector<BranchSample> samples;
+    ArclengthOptions ob = o;
+    ob.parameter_max = bp.parameter + 0.3;
+    ob.max_steps = 12;
+    const BranchTrace cone = trace_branch_along(
+        family, bp.x + 0.005 * mode, bp.parameter, mode, 0.0, pinned, ob,
+        [&](const BranchSample& p) { samples.push_back(p); });
+    ASSERT_GE(samples.size(), 5u) << cone.message;
+    // Supercritical: the cone exists above the branch point and has n folds.
+    EXPECT_GT(samples.back().parameter, bp.parameter);
+    model.set_excess_angle(samples.back().parameter);
+    EXPECT_EQ(analyze_rim_folds(model, samples.back().x).folds, n) << "n = " << n;
+    std::printf("n = %d: branch point phi_e = %.6f (mult %d); cone traced to phi_e = %.4f with "
+                "%d negative eigenvalues\n",
+                n, bp.parameter, bp.multiplicity, samples.back().parameter,
+                samples.back().negative_eigenvalues);
+  }
+}
+
+}  // namespace
+}  // namespace growshell
