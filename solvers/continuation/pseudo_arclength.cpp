@@ -175,7 +175,9 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
                                const std::vector<Eigen::Index>& fixed_dofs,
                                const ArclengthOptions& options,
                                const std::function<void(const BranchSample&)>& on_sample,
-                               const std::function<void(const SpecialPoint&)>& on_special) {
+                               const std::function<void(const SpecialPoint&)>& on_special,
+                               const std::vector<BranchEvent>& events,
+                               const std::function<void(const LocatedEvent&)>& on_event) {
   if (!(options.min_step > 0.0 && options.min_step <= options.initial_step &&
         options.initial_step <= options.max_step))
     throw std::invalid_argument("ArclengthOptions: need 0 < min_step <= initial_step <= max_step");
@@ -202,6 +204,8 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
     out.last = std::move(start);
     if (on_sample) on_sample(out.last);
   }
+  std::vector<double> event_values;
+  for (const BranchEvent& e : events) event_values.push_back(e.value(out.last));
 
   double step = options.initial_step;
   const double cos_max = std::cos(options.max_tangent_angle);
@@ -272,9 +276,51 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
       if (on_special) on_special(sp);
     }
 
+    // Events: sign changes of the test functions, located like special points.
+    bool stop = false;
+    std::vector<double> next_values;
+    for (const BranchEvent& e : events) next_values.push_back(e.value(next));
+    for (std::size_t k = 0; k < events.size(); ++k) {
+      if (!(event_values[k] * next_values[k] < 0.0)) continue;
+      double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter;
+      BranchSample hi = next;
+      for (int it = 0; it < 60 && std::abs(hi.parameter - lambda_lo) > options.special_point_tolerance;
+           ++it) {
+        const double s_mid = 0.5 * (s_lo + s_hi);
+        BranchSample mid;
+        if (!solver.correct(p.x + s_mid * p.tangent_state, p.parameter + s_mid * p.tangent_parameter,
+                            p.tangent_state, p.tangent_parameter, mid))
+          break;
+        if (events[k].value(mid) * event_values[k] > 0.0) {
+          s_lo = s_mid;
+          lambda_lo = mid.parameter;
+        } else {
+          s_hi = s_mid;
+          hi = std::move(mid);
+        }
+      }
+      LocatedEvent located{events[k].kind, 0.5 * (hi.parameter + lambda_lo), hi.x,
+                           std::abs(hi.parameter - lambda_lo)};
+      out.events.push_back(located);
+      if (on_event) on_event(located);
+      if (events[k].stop) {
+        stop = true;
+        hi.arclength = p.arclength + s_hi;
+        next = std::move(hi);
+        break;
+      }
+    }
+    event_values = next_values;
+
     out.last = std::move(next);
     ++out.steps;
     if (on_sample) on_sample(out.last);
+    if (stop) {
+      out.reached_bound = true;
+      out.message = "stopped at event '" + out.events.back().kind + "'";
+      family.set_parameter(out.last.parameter);
+      return out;
+    }
     const double factor =
         std::clamp(static_cast<double>(options.target_iterations) /
                        std::max(1, out.last.corrector_iterations),

@@ -54,8 +54,25 @@ struct SpecialPoint {
 
 const char* to_string(SpecialPoint::Kind kind);
 
+/// A scalar test function along a branch; an event is where it changes sign between two
+/// samples, located by bisection in arclength to |dlambda| <= special_point_tolerance.
+struct BranchEvent {
+  std::string kind;  ///< e.g. "contact", "eb_max"
+  std::function<double(const BranchSample&)> value;
+  bool stop = false;  ///< end the trace at this event
+};
+
+/// A located event.
+struct LocatedEvent {
+  std::string kind;
+  double parameter = 0.0;
+  Eigen::VectorXd x;
+  double bracket_width = 0.0;
+};
+
 struct BranchTrace {
   std::vector<SpecialPoint> special_points;
+  std::vector<LocatedEvent> events;
   BranchSample last;       ///< last converged sample (the start if nothing converged)
   bool reached_bound = false;  ///< stopped at parameter_min / parameter_max / max_steps
   std::string message;     ///< why the trace ended
@@ -85,7 +102,9 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
                                const std::vector<Eigen::Index>& fixed_dofs,
                                const ArclengthOptions& options,
                                const std::function<void(const BranchSample&)>& on_sample = {},
-                               const std::function<void(const SpecialPoint&)>& on_special = {});
+                               const std::function<void(const SpecialPoint&)>& on_special = {},
+                               const std::vector<BranchEvent>& events = {},
+                               const std::function<void(const LocatedEvent&)>& on_event = {});
 
 /// Critical mode at a branch point: a null vector of the Hessian at (x, lambda), by inverse
 /// iteration started from `hint` (e.g. the out-of-plane field cos(n theta) of the n-fold

@@ -137,6 +137,26 @@ TEST(PseudoArclength, PassesBothFoldsOfAnSCurveAndLocatesThem) {
   }
 }
 
+TEST(PseudoArclength, LocatesEventsAndStopsAtThem) {
+  // On lambda = y - y^3, the test function y - 0.2 changes sign once on the unstable middle
+  // part, at lambda = 0.2 - 0.008 = 0.192.
+  ToyFamily family(ToyFamily::Kind::SCurve, 3);
+  const double y0 = -1.5;
+  std::vector<LocatedEvent> seen;
+  const BranchTrace trace = trace_branch_along(
+      family, family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0)), y0 - y0 * y0 * y0,
+      Eigen::VectorXd::Zero(family.dimension()), -1.0, {}, toy_options(), {}, {},
+      {BranchEvent{"y_crossing", [](const BranchSample& s) { return s.x(0) - 0.2; }, true}},
+      [&](const LocatedEvent& e) { seen.push_back(e); });
+  ASSERT_EQ(trace.events.size(), 1u) << trace.message;
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(trace.events[0].kind, "y_crossing");
+  EXPECT_NEAR(trace.events[0].parameter, 0.2 - 0.008, 1e-6);
+  EXPECT_LE(trace.events[0].bracket_width, 1e-6);
+  EXPECT_NEAR(trace.last.parameter, 0.192, 1e-6);  // stopped there
+  EXPECT_EQ(trace.special_points.size(), 1u);       // only the first fold was passed
+}
+
 TEST(PseudoArclength, FindsTheBranchPointsOfSimpleAndDoublePitchforks) {
   for (auto kind : {ToyFamily::Kind::Pitchfork, ToyFamily::Kind::DoublePitchfork}) {
     ToyFamily family(kind, 5);
