@@ -274,6 +274,16 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
       sp.bracket_width = std::abs(hi.parameter - lambda_lo);
       out.special_points.push_back(sp);
       if (on_special) on_special(sp);
+      if (options.max_special_points > 0 &&
+          static_cast<int>(out.special_points.size()) >= options.max_special_points) {
+        out.last = std::move(next);
+        ++out.steps;
+        if (on_sample) on_sample(out.last);
+        out.reached_bound = true;
+        out.message = "found max_special_points special points";
+        family.set_parameter(out.last.parameter);
+        return out;
+      }
     }
 
     // Events: sign changes of the test functions, located like special points.

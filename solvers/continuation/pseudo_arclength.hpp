@@ -27,6 +27,8 @@ struct ArclengthOptions {
   double special_point_tolerance = 1e-6;  ///< |dlambda| to which special points are located
   double parameter_min = -1e300, parameter_max = 1e300;  ///< the trace stops outside
   int max_steps = 10000;
+  /// End the trace once this many special points were found (0 = no limit).
+  int max_special_points = 0;
 };
 
 /// A converged point of a branch.
