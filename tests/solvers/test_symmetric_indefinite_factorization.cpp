@@ -150,7 +150,7 @@ SpMat upper_of(const SpMat& full) {
 
 // A - sigma*I on the pattern of `upper` (which stores every diagonal entry).
 SpMat shifted(const SpMat& upper, double sigma) {
-  SpMat s = upper;
+  SpMat s = upper;  // NOLINT(performance-unnecessary-copy-initialization): written below
   for (int col = 0; col < s.outerSize(); ++col) {
     for (SpMat::InnerIterator it(s, col); it; ++it) {
       if (it.row() == it.col()) it.valueRef() -= sigma;

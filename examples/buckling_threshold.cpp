@@ -1,0 +1,101 @@
+// buckling_threshold: the excess angles at which the flat disc (or ring) loses stability to
+// the n = 2, 3, ... fold modes, for a list of thicknesses and mesh resolutions.
+//
+// The flat branch is followed by pseudo-arclength continuation; each change of the negative
+// eigenvalue count of the Hessian (a double branch point: the cos/sin pair of an n-fold mode)
+// is located to 1e-8 in phi_e. Prints one line per (h, rings) and writes a CSV.
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "examples/support/command_line.hpp"
+#include "libshell/io/scene.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+namespace {
+
+using namespace growshell;
+
+std::vector<double> parse_list(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(std::stod(item));
+  return out;
+}
+
+int run(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  examples::CommandLine cl(argc, argv);
+  if (cl.help()) {
+    std::puts("usage: buckling_threshold [--h 0.04,0.02,0.01] [--rings 12,24] [--modes 2]\n"
+              "                          [--inner-radius RI] [--out FILE.csv]");
+    return 0;
+  }
+  const std::vector<double> hs = parse_list(cl.text("--h", "0.04,0.02,0.01"));
+  const std::vector<double> rings = parse_list(cl.text("--rings", "12,24"));
+  const int modes = cl.integer("--modes", 2);
+  const std::string inner = cl.text("--inner-radius", "");
+  const std::string out_path = cl.text("--out", "buckling_threshold.csv");
+  cl.reject_unknown();
+  std::ofstream csv(out_path);
+  csv << "h,rings,branch_point,phi_e,multiplicity,phi_e_over_h2\n";
+  std::printf("%8s %6s %4s %14s %5s %12s\n", "h", "rings", "k", "phi_e", "mult", "phi_e/h^2");
+  for (double h : hs) {
+    for (double r : rings) {
+      Scene scene = default_scene();
+      apply_override(scene, "thickness", std::to_string(h));
+      if (!inner.empty()) {
+        apply_override(scene, "geometry.shape", "ring");
+        apply_override(scene, "geometry.inner_radius", inner);
+        apply_override(scene, "mesh.radial_layers", std::to_string(static_cast<int>(r)));
+      } else {
+        apply_override(scene, "mesh.rings", std::to_string(static_cast<int>(r)));
+      }
+      validate_scene(scene);
+      ShellModel model(scene_mesh(scene), scene_model_settings(scene));
+      const Eigen::VectorXd& X = model.reference_positions();
+      const Eigen::MatrixX3d P =
+          Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+      const auto pinned = rigid_motion_pinned_dofs(P, model.sheet_vertices());
+      ShellGrowthFamily family(model);
+      ArclengthOptions o;
+      o.initial_step = 1e-4 * (h / 0.02) * (h / 0.02) * 10;
+      o.max_step = 5 * o.initial_step;  // small enough to separate neighbouring branch points
+      o.min_step = 1e-9;
+      o.gradient_tolerance = 1e-9 * model.natural_force_scale();
+      o.special_point_tolerance = 1e-8;
+      o.max_special_points = modes;
+      const BranchTrace trace = trace_branch(family, X, 0.0, +1, pinned, o);
+      int k = 0;
+      for (const SpecialPoint& sp : trace.special_points) {
+        ++k;
+        std::printf("%8.4f %6d %4d %14.9f %5d %12.4f\n", h, static_cast<int>(r), k, sp.parameter,
+                    sp.multiplicity, sp.parameter / (h * h));
+        csv << h << ',' << r << ',' << k << ',' << std::setprecision(12) << sp.parameter << ','
+            << sp.multiplicity << ',' << sp.parameter / (h * h) << '\n';
+      }
+      if (static_cast<int>(trace.special_points.size()) < modes)
+        std::printf("%8.4f %6d: only %zu branch points found (%s)\n", h, static_cast<int>(r),
+                    trace.special_points.size(), trace.message.c_str());
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "buckling_threshold: error: %s\n", e.what());
+    return 2;
+  }
+}
