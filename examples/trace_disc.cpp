@@ -1,0 +1,340 @@
+// trace_disc: trace an e-cone branch of a growing disc or ring by pseudo-arclength
+// continuation in the excess angle phi_e.
+//
+// From the flat state the flat branch is followed until the branch point whose critical mode
+// has the requested number of folds n (--mode); the trace switches onto the n-fold cone and
+// follows it (through folds, stable or not) up to first contact or --phi-max. Each converged
+// point is appended to branch.csv and saved under states/ as soon as it converges; --resume
+// restarts from any saved point, forward or --backward.
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "examples/support/command_line.hpp"
+#include "libshell/analysis/rim_folds.hpp"
+#include "libshell/analysis/self_distance.hpp"
+#include "libshell/io/scene.hpp"
+#include "libshell/io/shell_snapshot.hpp"
+#include "libshell/io/vtk_writer.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+namespace {
+
+using namespace growshell;
+
+const char* kUsage = R"(usage: trace_disc [scene.json] [options]
+  --h H               thickness (overrides the scene)
+  --inner-radius RI   make the sheet a ring with this inner radius
+  --mode N            number of folds of the traced cone (default 2)
+  --phi-max P         largest excess angle (default 3.73 in the default scene)
+  --backward 1        trace towards decreasing phi_e (with --resume)
+  --rings N           mesh resolution (rings of a disc, radial layers of a ring)
+  --through-contact 1 do not stop at first contact
+  --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
+  --out DIR           output directory (default: the scene's output.directory)
+Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
+snapshots every output.snapshot_every points and at events.
+)";
+
+/// Saved point: phi_e, dlambda/ds, then x and dx/ds, one number per line (full precision).
+void save_point(const std::string& path, const BranchSample& s) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << std::setprecision(17) << s.parameter << '\n' << s.tangent_parameter << '\n'
+      << s.x.size() << '\n';
+  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.x(i) << '\n';
+  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.tangent_state(i) << '\n';
+}
+
+BranchSample load_point(const std::string& path, Eigen::Index n) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read resume file " + path);
+  BranchSample s;
+  Eigen::Index size = 0;
+  in >> s.parameter >> s.tangent_parameter >> size;
+  if (!in || size != n)
+    throw std::runtime_error("resume file " + path + " does not fit this scene (" +
+                             std::to_string(size) + " unknowns, expected " + std::to_string(n) +
+                             ")");
+  s.x.resize(n);
+  s.tangent_state.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) in >> s.x(i);
+  for (Eigen::Index i = 0; i < n; ++i) in >> s.tangent_state(i);
+  if (!in) throw std::runtime_error("resume file " + path + " is truncated");
+  return s;
+}
+
+/// Out-of-plane field r^n cos(n theta): the mirror-symmetric member of the n-fold pair.
+Eigen::VectorXd mode_hint(const ShellModel& model, int n) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  Eigen::VectorXd hint = Eigen::VectorXd::Zero(X.size());
+  for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
+    const double r = std::hypot(X(3 * v), X(3 * v + 1)), t = std::atan2(X(3 * v + 1), X(3 * v));
+    hint(3 * v + 2) = std::pow(r, n) * std::cos(n * t);
+  }
+  return hint;
+}
+
+/// Dominant angular wavenumber k >= 2 of the out-of-plane part of a mode on the outer rim
+/// (k = 1 is the tilt that the rigid-motion pins add to every mode).
+int angular_wavenumber(const ShellModel& model, const Eigen::VectorXd& mode) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  double r_max = 0.0;
+  for (int v : model.sheet_vertices()) r_max = std::max(r_max, X.segment<2>(3 * v).norm());
+  double best = -1.0;
+  int best_k = 0;
+  for (int k = 2; k <= 8; ++k) {
+    double c = 0.0, s = 0.0, norm = 0.0;
+    for (int v : model.sheet_vertices()) {
+      if (X.segment<2>(3 * v).norm() < 0.999 * r_max) continue;
+      const double t = std::atan2(X(3 * v + 1), X(3 * v));
+      c += mode(3 * v + 2) * std::cos(k * t);
+      s += mode(3 * v + 2) * std::sin(k * t);
+      norm += 1.0;
+    }
+    const double power = (c * c + s * s) / (norm * norm);
+    if (power > best) {
+      best = power;
+      best_k = k;
+    }
+  }
+  return best_k;
+}
+
+int run(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  Scene scene = default_scene();
+  int first_option = 1;
+  if (argc > 1 && argv[1][0] != '-') {
+    scene = read_scene(argv[1]);
+    first_option = 2;
+  }
+  std::vector<char*> rest(argv + first_option, argv + argc);
+  rest.insert(rest.begin(), argv[0]);
+  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  if (cl.help()) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const auto set = [&](const char* option, const char* key) {
+    const std::string v = cl.text(option, "");
+    if (!v.empty()) apply_override(scene, key, v);
+  };
+  const std::string inner = cl.text("--inner-radius", "");
+  if (!inner.empty()) {
+    apply_override(scene, "geometry.shape", "ring");
+    apply_override(scene, "geometry.inner_radius", inner);
+  }
+  set("--h", "thickness");
+  set("--mode", "continuation.mode");
+  set("--phi-max", "continuation.phi_max");
+  set("--out", "output.directory");
+  const std::string rings = cl.text("--rings", "");
+  if (!rings.empty())
+    apply_override(scene, scene.geometry.shape == SceneShape::Ring ? "mesh.radial_layers" : "mesh.rings",
+                   rings);
+  if (cl.integer("--backward", 0) != 0) apply_override(scene, "continuation.direction", "backward");
+  const bool through_contact = cl.integer("--through-contact", 0) != 0;
+  const std::string resume = cl.text("--resume", "");
+  cl.reject_unknown();
+  validate_scene(scene);
+
+  const std::string out_dir = scene.output.directory;
+  std::filesystem::create_directories(out_dir + "/states");
+  std::ofstream(out_dir + "/scene.json") << scene_to_json(scene);
+  ShellModel model(scene_mesh(scene), scene_model_settings(scene));
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const double contact_distance = scene.physics.contact_distance.value_or(h);
+  std::printf("# %s R = %g%s, h = %g, mode %d, %lld elements, %lld unknowns\n",
+              scene.geometry.shape == SceneShape::Ring ? "ring" : "disc", scene.geometry.radius,
+              scene.geometry.shape == SceneShape::Ring
+                  ? (", R_i = " + std::to_string(scene.geometry.inner_radius)).c_str()
+                  : "",
+              h, scene.continuation.mode, static_cast<long long>(model.num_elements()),
+              static_cast<long long>(model.dimension()));
+
+  // Rigid motions: the vertex nearest the centre and two rim points on the mesh's mirror axes.
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::MatrixX3d P =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+  int centre = model.sheet_vertices().front(), rim_x = centre, rim_y = centre;
+  for (int v : model.sheet_vertices()) {
+    if (P.row(v).head<2>().norm() < P.row(centre).head<2>().norm()) centre = v;
+    if (P(v, 0) > P(rim_x, 0)) rim_x = v;
+    if (P(v, 1) > P(rim_y, 1)) rim_y = v;
+  }
+  const auto pinned = rigid_motion_pinned_dofs(P, {centre, rim_x, rim_y});
+  ShellGrowthFamily family(model);
+  ArclengthOptions options;
+  options.initial_step = scene.continuation.max_step / 4;
+  options.max_step = scene.continuation.max_step;
+  options.min_step = scene.continuation.min_step;
+  options.gradient_tolerance = 1e-8 * model.natural_force_scale();
+  options.parameter_min = scene.continuation.phi_min;
+  options.parameter_max = scene.continuation.phi_max;
+
+  // Output files.
+  std::ofstream branch(out_dir + "/branch.csv", resume.empty() ? std::ios::trunc : std::ios::app);
+  branch << std::setprecision(12);
+  if (resume.empty())
+    branch << "phi_e,E_stretch,E_bend,Eb_hat,area,min_gap,n_negative,corrector_iterations,"
+              "arclength,folds\n";
+  std::vector<std::string> events_json;
+  std::vector<CollectionEntry> snapshots;
+  int point_index = 0;
+  while (std::filesystem::exists(out_dir + "/states/point_" +
+                                 (std::ostringstream() << std::setw(5) << std::setfill('0')
+                                                       << point_index)
+                                     .str() +
+                                 ".txt"))
+    ++point_index;
+  SelfDistanceOptions gap_options;
+  gap_options.exclusion_radius = 0.5 * std::acos(-1.0) * h;
+  const auto gap_of = [&](const Eigen::VectorXd& x) {
+    return smallest_self_distance(model, x, gap_options).distance;
+  };
+  const auto snapshot = [&](const BranchSample& s, const std::string& name) {
+    if (!scene.output.write_vtk) return;
+    model.set_excess_angle(s.parameter);
+    write_vtu(out_dir + "/" + name, shell_snapshot(model, s.x, 2));
+    snapshots.push_back({s.parameter, name});
+    write_pvd(out_dir + "/branch.pvd", snapshots);
+  };
+  int samples_on_cone = 0;
+  const auto on_sample = [&](const BranchSample& s) {
+    model.set_excess_angle(s.parameter);
+    const ShellEnergyBreakdown e = model.energy_breakdown(s.x);
+    const double gap = gap_of(s.x);
+    const int folds = analyze_rim_folds(model, s.x).folds;
+    std::printf("%9.5f %13.6e %13.6e %10.5f %10.3e %4d %3d %5d\n", s.parameter, e.stretching,
+                e.bending, e.normalized_bending(), gap, s.negative_eigenvalues,
+                s.corrector_iterations, folds);
+    branch << s.parameter << ',' << e.stretching << ',' << e.bending << ','
+           << e.normalized_bending() << ',' << e.current_area << ',' << gap << ','
+           << s.negative_eigenvalues << ',' << s.corrector_iterations << ',' << s.arclength << ','
+           << folds << '\n';
+    branch.flush();
+    std::ostringstream name;
+    name << "point_" << std::setw(5) << std::setfill('0') << point_index;
+    save_point(out_dir + "/states/" + name.str() + ".txt", s);
+    if (samples_on_cone++ % scene.output.snapshot_every == 0) snapshot(s, name.str() + ".vtu");
+    ++point_index;
+  };
+  const auto write_events = [&] {
+    std::ofstream ev(out_dir + "/events.json");
+    ev << "[\n";
+    for (std::size_t i = 0; i < events_json.size(); ++i)
+      ev << "  " << events_json[i] << (i + 1 < events_json.size() ? ",\n" : "\n");
+    ev << "]\n";
+  };
+  const auto on_special = [&](const SpecialPoint& sp) {
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"kind\": \"" << to_string(sp.kind) << "\", \"phi_e\": "
+      << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
+      << ", \"negative_before\": " << sp.negative_before
+      << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width
+      << "}";
+    events_json.push_back(j.str());
+    write_events();
+    std::printf("# %s at phi_e = %.7f (multiplicity %d, negative %d -> %d)\n", to_string(sp.kind),
+                sp.parameter, sp.multiplicity, sp.negative_before, sp.negative_after);
+  };
+  const auto on_event = [&](const LocatedEvent& e) {
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"kind\": \"" << e.kind << "\", \"phi_e\": " << e.parameter
+      << ", \"bracket\": " << e.bracket_width << "}";
+    events_json.push_back(j.str());
+    write_events();
+    std::printf("# event %s at phi_e = %.7f\n", e.kind.c_str(), e.parameter);
+    BranchSample s;
+    s.parameter = e.parameter;
+    s.x = e.x;
+    snapshot(s, "event_" + e.kind + ".vtu");
+  };
+  // Test functions: gap minus the contact distance, gap itself, and dEb_hat/dphi_e.
+  const auto eb_hat = [&](const Eigen::VectorXd& x, double phi) {
+    model.set_excess_angle(phi);
+    return model.energy_breakdown(x).normalized_bending();
+  };
+  const std::vector<BranchEvent> events = {
+      {"contact", [&](const BranchSample& s) { return gap_of(s.x) - contact_distance; },
+       !through_contact},
+      {"midsurface_contact", [&](const BranchSample& s) { return gap_of(s.x); }, false},
+      {"eb_max",
+       [&](const BranchSample& s) {
+         const double eps = 1e-4;
+         const double d = (eb_hat(s.x + eps * s.tangent_state, s.parameter + eps * s.tangent_parameter) -
+                           eb_hat(s.x - eps * s.tangent_state, s.parameter - eps * s.tangent_parameter)) /
+                          (2 * eps);
+         return s.tangent_parameter >= 0 ? d : -d;
+       },
+       false}};
+
+  std::printf("%9s %13s %13s %10s %10s %4s %3s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat",
+              "min_gap", "neg", "it", "folds");
+  BranchTrace trace;
+  if (!resume.empty()) {
+    const BranchSample start = load_point(resume, model.dimension());
+    const double sign = scene.continuation.direction == ContinuationDirection::Backward
+                            ? (start.tangent_parameter > 0 ? -1.0 : 1.0)
+                            : (start.tangent_parameter >= 0 ? 1.0 : -1.0);
+    std::printf("# resuming from %s at phi_e = %.6f\n", resume.c_str(), start.parameter);
+    trace = trace_branch_along(family, start.x, start.parameter, sign * start.tangent_state,
+                               sign * start.tangent_parameter, pinned, options, on_sample,
+                               on_special, events, on_event);
+  } else {
+    // The flat branch up to the branch point of the n-fold mode (the flat branch is stable up
+    // to the first one; the n-th pair of modes goes unstable at the (n-1)-th).
+    ArclengthOptions flat_options = options;
+    flat_options.initial_step = 1e-3;
+    flat_options.max_step = 0.01;
+    flat_options.max_special_points = scene.continuation.mode - 1;
+    std::vector<SpecialPoint> flat_points;
+    const BranchTrace flat = trace_branch(
+        family, X, scene.continuation.phi_start, +1, pinned, flat_options, {},
+        [&](const SpecialPoint& sp) {
+          flat_points.push_back(sp);
+          on_special(sp);
+        });
+    const Eigen::VectorXd hint = mode_hint(model, scene.continuation.mode);
+    const SpecialPoint* chosen = nullptr;
+    for (const SpecialPoint& sp : flat_points) {
+      const Eigen::VectorXd m = critical_mode(family, sp.x, sp.parameter, hint, pinned, options);
+      if (angular_wavenumber(model, m) == scene.continuation.mode) chosen = &sp;
+    }
+    if (!chosen) {
+      std::fprintf(stderr, "trace_disc: error: no branch point with a %d-fold mode on the flat "
+                   "branch up to phi_e = %g (%s)\n", scene.continuation.mode,
+                   flat.last.parameter, flat.message.c_str());
+      return 3;
+    }
+    const Eigen::VectorXd mode = critical_mode(family, chosen->x, chosen->parameter, hint, pinned, options);
+    std::printf("# switching onto the %d-fold cone at phi_e = %.7f\n", scene.continuation.mode,
+                chosen->parameter);
+    trace = trace_branch_along(family, chosen->x + 0.005 * mode, chosen->parameter, mode, 0.0,
+                               pinned, options, on_sample, on_special, events, on_event);
+  }
+  snapshot(trace.last, "last.vtu");
+  std::printf("# trace ended: %s (%d steps, %d failed)\n", trace.message.c_str(), trace.steps,
+              trace.failed_steps);
+  std::printf("# wrote %s/branch.csv, events.json, states/, branch.pvd\n", out_dir.c_str());
+  return trace.reached_bound ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "trace_disc: error: %s\n", e.what());
+    return 2;
+  }
+}
