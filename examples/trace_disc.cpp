@@ -37,6 +37,7 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --backward 1        trace towards decreasing phi_e (with --resume)
   --rings N           mesh resolution (rings of a disc, radial layers of a ring)
   --through-contact 1 do not stop at first contact
+  --tolerance T       corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
   --out DIR           output directory (default: the scene's output.directory)
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
@@ -143,6 +144,7 @@ int run(int argc, char** argv) {
   if (cl.integer("--backward", 0) != 0) apply_override(scene, "continuation.direction", "backward");
   const bool through_contact = cl.integer("--through-contact", 0) != 0;
   const std::string resume = cl.text("--resume", "");
+  const double tolerance = cl.number("--tolerance", 1e-6);
   cl.reject_unknown();
   validate_scene(scene);
 
@@ -176,7 +178,8 @@ int run(int argc, char** argv) {
   options.initial_step = scene.continuation.max_step / 4;
   options.max_step = scene.continuation.max_step;
   options.min_step = scene.continuation.min_step;
-  options.gradient_tolerance = 1e-8 * model.natural_force_scale();
+  if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
+  options.gradient_tolerance = tolerance * model.natural_force_scale();
   options.parameter_min = scene.continuation.phi_min;
   options.parameter_max = scene.continuation.phi_max;
 
