@@ -37,6 +37,8 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --backward 1        trace towards decreasing phi_e (with --resume)
   --rings N           mesh resolution (rings of a disc, radial layers of a ring)
   --through-contact 1 do not stop at first contact
+  --core-radius RC    ignore the sheet within RC of the centre when measuring the gap
+                      (default 0; see docs/validation.md)
   --tolerance T       corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
   --out DIR           output directory (default: the scene's output.directory)
@@ -145,6 +147,7 @@ int run(int argc, char** argv) {
   const bool through_contact = cl.integer("--through-contact", 0) != 0;
   const std::string resume = cl.text("--resume", "");
   const double tolerance = cl.number("--tolerance", 1e-6);
+  const double core_radius = cl.number("--core-radius", 0.0);
   cl.reject_unknown();
   validate_scene(scene);
 
@@ -200,6 +203,8 @@ int run(int argc, char** argv) {
     ++point_index;
   SelfDistanceOptions gap_options;
   gap_options.exclusion_radius = 0.5 * std::acos(-1.0) * h;
+  gap_options.core_radius = core_radius;
+  gap_options.core_center = model.settings().growth.center;
   const auto gap_of = [&](const Eigen::VectorXd& x) {
     return smallest_self_distance(model, x, gap_options).distance;
   };

@@ -37,7 +37,8 @@ struct Best {
 /// sample shared with other elements is kept only from the first element that has it, since
 /// duplicates would multiply the pairs of the broad phase (by 9 for n = 2) without changing
 /// the answer.
-Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x, int n) {
+Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x, int n,
+                             const SelfDistanceOptions& options) {
   const Eigen::Index num_vertices = x.size() / 3;
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   // One copy into column-major storage, so evaluate_limit_surface binds without temporaries.
@@ -86,8 +87,10 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
         if (i == 0 && j == 0) corner_a = p;
         if (i == 0 && j == n) s.mean_spacing += (p - corner_a).norm();
         if (!keep) continue;
+        const Eigen::Vector3d q = evaluate_limit_surface(reference, control, v, w).position;
+        if ((q - options.core_center).norm() < options.core_radius) continue;
         s.current.push_back(p);
-        s.reference.push_back(evaluate_limit_surface(reference, control, v, w).position);
+        s.reference.push_back(q);
         s.element.push_back(e);
       }
     }
@@ -178,6 +181,12 @@ SelfDistance smallest_self_distance(const ShellModel& model, const Eigen::Ref<co
     msg << "SelfDistanceOptions.samples_per_edge must be >= 1, got " << options.samples_per_edge;
     throw std::invalid_argument(msg.str());
   }
+  if (!(options.core_radius >= 0.0) || !std::isfinite(options.core_radius)) {
+    std::ostringstream msg;
+    msg << "SelfDistanceOptions.core_radius must be finite and >= 0 (metres), got "
+        << options.core_radius;
+    throw std::invalid_argument(msg.str());
+  }
   if (x.size() != model.dimension()) {
     std::ostringstream msg;
     msg << "smallest_self_distance: x has " << x.size() << " entries, the model has dimension "
@@ -195,7 +204,7 @@ SelfDistance smallest_self_distance(const ShellModel& model, const Eigen::Ref<co
   }
 
   const int n = options.samples_per_edge;
-  const Samples s = sample_limit_surface(model, x, n);
+  const Samples s = sample_limit_surface(model, x, n, options);
   SelfDistance result;
   if (s.current.size() < 2) return result;
 

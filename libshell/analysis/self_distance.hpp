@@ -22,6 +22,12 @@ struct SelfDistanceOptions {
   /// edge (>= 1; 1 = the three corners only): (n + 1)(n + 2) / 2 limit-surface samples per
   /// element. The accuracy knob (see SelfDistance::distance).
   int samples_per_edge = 2;
+  /// Samples whose reference position lies within this distance (metres, >= 0) of
+  /// `core_center` are ignored. Near the apex of a cone every generator converges, so any two
+  /// points just outside the exclusion radius on opposite sides of the apex are close in
+  /// space although the sheet there is smooth (the core); 0 keeps every sample.
+  double core_radius = 0.0;
+  Eigen::Vector3d core_center = Eigen::Vector3d::Zero();
 };
 
 /// Result of smallest_self_distance (metres, global Cartesian basis).

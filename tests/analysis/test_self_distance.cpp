@@ -282,5 +282,22 @@ TEST(SelfDistance, RejectsBadOptionsNamingTheField) {
   EXPECT_NE(message({0.1, 2}, bad).find("x(7)"), std::string::npos);
 }
 
+TEST(SelfDistance, CoreRadiusIgnoresTheSheetAroundTheCentre) {
+  DiscMeshOptions o;
+  o.rings = 10;
+  const ShellModel model(make_disc_mesh(o), ShellModelSettings{});
+  SelfDistanceOptions opts;
+  opts.exclusion_radius = 0.25;
+  opts.core_radius = 0.5;
+  const SelfDistance d = smallest_self_distance(model, model.reference_positions(), opts);
+  // Flat: the closest admissible pair is still ~r_ex apart, now both points outside the core.
+  EXPECT_GE(d.distance, opts.exclusion_radius);
+  EXPECT_GE(d.reference_a.norm(), opts.core_radius);
+  EXPECT_GE(d.reference_b.norm(), opts.core_radius);
+  opts.core_radius = -1.0;
+  EXPECT_THROW(smallest_self_distance(model, model.reference_positions(), opts),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace growshell
