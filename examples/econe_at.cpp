@@ -110,15 +110,9 @@ int run(int argc, char** argv) {
 
   const Eigen::MatrixX3d positions = Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
       model.reference_positions().data(), model.dimension() / 3, 3);
-  // Rigid motions are removed by pinning the centre and two rim points on the mesh's mirror
-  // axes at 0 and 90 degrees, so that the pins respect the mirror symmetry of the states.
-  int rim_x = model.sheet_vertices().front(), rim_y = rim_x;
-  for (int v : model.sheet_vertices()) {
-    if (positions(v, 0) > positions(rim_x, 0)) rim_x = v;
-    if (positions(v, 1) > positions(rim_y, 1)) rim_y = v;
-  }
-  const std::vector<Eigen::Index> pinned =
-      rigid_motion_pinned_dofs(positions, {model.sheet_vertices().front(), rim_x, rim_y});
+  // Rigid motions: pins on the mesh's mirror axes, so that symmetric states stay symmetric.
+  const std::vector<Eigen::Index> pinned = mirror_axis_pinned_dofs(
+      positions, model.sheet_vertices(), model.settings().growth.center);
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = rtol * model.natural_force_scale();
   newton_options.decrement_tolerance = etol * settings.material.youngs_modulus * h * h * h;

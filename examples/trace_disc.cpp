@@ -165,17 +165,12 @@ int run(int argc, char** argv) {
               h, scene.continuation.mode, static_cast<long long>(model.num_elements()),
               static_cast<long long>(model.dimension()));
 
-  // Rigid motions: the vertex nearest the centre and two rim points on the mesh's mirror axes.
+  // Rigid motions: pins on the mesh's mirror axes, so that symmetric states stay symmetric.
   const Eigen::VectorXd& X = model.reference_positions();
   const Eigen::MatrixX3d P =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
-  int centre = model.sheet_vertices().front(), rim_x = centre, rim_y = centre;
-  for (int v : model.sheet_vertices()) {
-    if (P.row(v).head<2>().norm() < P.row(centre).head<2>().norm()) centre = v;
-    if (P(v, 0) > P(rim_x, 0)) rim_x = v;
-    if (P(v, 1) > P(rim_y, 1)) rim_y = v;
-  }
-  const auto pinned = rigid_motion_pinned_dofs(P, {centre, rim_x, rim_y});
+  const auto pinned =
+      mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
   ShellGrowthFamily family(model);
   ArclengthOptions options;
   options.initial_step = scene.continuation.max_step / 4;

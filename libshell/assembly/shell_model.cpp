@@ -189,23 +189,38 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
   return energy;
 }
 
-ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+ShellEnergyBreakdown ShellModel::element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                  Eigen::Index e) const {
   ShellEnergyBreakdown out;
   const int m = reference_.points_per_element();
+  const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
+  for (int q = 0; q < m; ++q) {
+    const Eigen::Index i = e * m + q;
+    const SurfaceJet jet = make_jet(reference_.jet_map(q).transpose() * xe);
+    const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
+                              reference_.thickness(i)};
+    const ShellPointEnergy p = shell_point_energy(jet, rest, settings_.material);
+    out.stretching += p.stretching;
+    out.bending += p.bending;
+    out.bending_density_integral += p.bending_density_integral;
+    out.stretching_density_integral +=
+        p.stretching / stretching_modulus(settings_.material, rest.thickness);
+    out.current_area += p.current_area;
+    out.grown_area += rest.weight * std::sqrt(target_metric_[i].determinant());
+  }
+  return out;
+}
+
+ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  ShellEnergyBreakdown out;
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-    for (int q = 0; q < m; ++q) {
-      const Eigen::Index i = e * m + q;
-      const SurfaceJet jet = make_jet(reference_.jet_map(q).transpose() * xe);
-      const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                                reference_.thickness(i)};
-      const ShellPointEnergy p = shell_point_energy(jet, rest, settings_.material);
-      out.stretching += p.stretching;
-      out.bending += p.bending;
-      out.bending_density_integral += p.bending_density_integral;
-      out.current_area += p.current_area;
-      out.grown_area += rest.weight * std::sqrt(target_metric_[i].determinant());
-    }
+    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    out.stretching += b.stretching;
+    out.bending += b.bending;
+    out.bending_density_integral += b.bending_density_integral;
+    out.stretching_density_integral += b.stretching_density_integral;
+    out.current_area += b.current_area;
+    out.grown_area += b.grown_area;
   }
   return out;
 }
@@ -236,19 +251,9 @@ Eigen::VectorXd ShellModel::gradient_excess_angle_derivative(
 
 Eigen::VectorXd ShellModel::element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   Eigen::VectorXd out(num_elements());
-  const int m = reference_.points_per_element();
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-    double integral = 0.0, area = 0.0;
-    for (int q = 0; q < m; ++q) {
-      const Eigen::Index i = e * m + q;
-      const SurfaceJet jet = make_jet(reference_.jet_map(q).transpose() * xe);
-      const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                                reference_.thickness(i)};
-      integral += shell_point_energy(jet, rest, settings_.material).bending_density_integral;
-      area += rest.weight * std::sqrt(target_metric_[i].determinant());
-    }
-    out(e) = integral / area;
+    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    out(e) = b.bending_density_integral / b.grown_area;
   }
   return out;
 }
@@ -256,20 +261,9 @@ Eigen::VectorXd ShellModel::element_bending_density(const Eigen::Ref<const Eigen
 Eigen::VectorXd ShellModel::element_stretching_density(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
   Eigen::VectorXd out(num_elements());
-  const int m = reference_.points_per_element();
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-    double energy = 0.0, area = 0.0;
-    for (int q = 0; q < m; ++q) {
-      const Eigen::Index i = e * m + q;
-      const SurfaceJet jet = make_jet(reference_.jet_map(q).transpose() * xe);
-      const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                                reference_.thickness(i)};
-      energy += shell_point_energy(jet, rest, settings_.material).stretching /
-                stretching_modulus(settings_.material, rest.thickness);
-      area += rest.weight * std::sqrt(target_metric_[i].determinant());
-    }
-    out(e) = energy / area;
+    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    out(e) = b.stretching_density_integral / b.grown_area;
   }
   return out;
 }

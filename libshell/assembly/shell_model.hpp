@@ -35,6 +35,7 @@ struct ShellEnergyBreakdown {
   double stretching = 0.0;  ///< J
   double bending = 0.0;     ///< J
   double bending_density_integral = 0.0;  ///< integral of U_b over the grown reference (1)
+  double stretching_density_integral = 0.0;  ///< integral of U_s over the grown reference (m^2)
   double current_area = 0.0;              ///< m^2
   double grown_area = 0.0;                ///< target (grown reference) area, m^2
   double total() const { return stretching + bending; }
@@ -95,6 +96,9 @@ class ShellModel final : public SparseObjective {
   Eigen::Matrix<double, 36, 1> element_coordinates(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                    Eigen::Index e) const;
   int thread_count() const;
+  /// Energy parts of element e alone.
+  ShellEnergyBreakdown element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         Eigen::Index e) const;
 
   ShellModelSettings settings_;
   MeshTopology topology_;

@@ -10,14 +10,6 @@
 namespace growshell {
 namespace {
 
-/// A point (x, lambda) with the unit tangent (in the weighted norm) of the branch there.
-struct TangentPoint {
-  Eigen::VectorXd x;
-  double lambda = 0.0;
-  Eigen::VectorXd tx;
-  double tl = 0.0;
-};
-
 /// Newton on the bordered system and the tangent/inertia at converged points. Owns the
 /// Hessian buffer and the factorisation (analysed once).
 class BranchSolver {

@@ -87,3 +87,22 @@ std::vector<Eigen::Index> rigid_motion_pinned_dofs(
 }
 
 }  // namespace growshell
+
+namespace growshell {
+
+std::vector<Eigen::Index> mirror_axis_pinned_dofs(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                                  const std::vector<int>& sheet_vertices,
+                                                  const Eigen::Vector3d& center) {
+  if (sheet_vertices.empty())
+    throw std::invalid_argument("mirror_axis_pinned_dofs: no sheet vertices");
+  int nearest = sheet_vertices.front(), along_x = nearest, along_y = nearest;
+  const auto offset = [&](int v) { return (positions.row(v).transpose() - center).eval(); };
+  for (int v : sheet_vertices) {
+    if (offset(v).head<2>().norm() < offset(nearest).head<2>().norm()) nearest = v;
+    if (offset(v).x() > offset(along_x).x()) along_x = v;
+    if (offset(v).y() > offset(along_y).y()) along_y = v;
+  }
+  return rigid_motion_pinned_dofs(positions, {nearest, along_x, along_y});
+}
+
+}  // namespace growshell

@@ -30,3 +30,16 @@ std::vector<Eigen::Index> rigid_motion_pinned_dofs(
     const std::vector<int>& candidate_vertices);
 
 }  // namespace growshell
+
+namespace growshell {
+
+/// Rigid-motion pins (as rigid_motion_pinned_dofs) on three vertices chosen among
+/// `sheet_vertices` so that they respect a mirror symmetry about the x-axis through `center`:
+/// the vertex nearest `center` and the vertices farthest along +x and along +y from it, which
+/// on the library's disc and annulus meshes lie on mirror axes (0 and 90 degrees). States that
+/// are mirror-symmetric stay so under Newton's method with these pins.
+std::vector<Eigen::Index> mirror_axis_pinned_dofs(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                                  const std::vector<int>& sheet_vertices,
+                                                  const Eigen::Vector3d& center);
+
+}  // namespace growshell

@@ -31,12 +31,7 @@ Scene make_scene(int rings, double h) {
   const Eigen::VectorXd& X = model.reference_positions();
   const Eigen::MatrixX3d P =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
-  int rim_x = model.sheet_vertices().front(), rim_y = rim_x;
-  for (int v : model.sheet_vertices()) {
-    if (P(v, 0) > P(rim_x, 0)) rim_x = v;
-    if (P(v, 1) > P(rim_y, 1)) rim_y = v;
-  }
-  auto pinned = rigid_motion_pinned_dofs(P, {model.sheet_vertices().front(), rim_x, rim_y});
+  auto pinned = mirror_axis_pinned_dofs(P, model.sheet_vertices(), Eigen::Vector3d::Zero());
   return {std::move(model), pinned};
 }
 
