@@ -19,6 +19,7 @@
 #include "examples/support/command_line.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/analysis/self_distance.hpp"
+#include "libshell/analysis/self_intersection.hpp"
 #include "libshell/io/scene.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
@@ -200,6 +201,10 @@ int run(int argc, char** argv) {
   gap_options.exclusion_radius = 0.5 * std::acos(-1.0) * h;
   gap_options.core_radius = core_radius;
   gap_options.core_center = model.settings().growth.center;
+  SelfIntersectionOptions crossing_options;
+  crossing_options.exclusion_radius = gap_options.exclusion_radius;
+  crossing_options.core_radius = gap_options.core_radius;
+  crossing_options.core_center = gap_options.core_center;
   const auto gap_of = [&](const Eigen::VectorXd& x) {
     return smallest_self_distance(model, x, gap_options).distance;
   };
@@ -261,9 +266,8 @@ int run(int argc, char** argv) {
     s.x = e.x;
     snapshot(s, "event_" + e.kind + ".vtu");
   };
-  // Test functions: gap minus the contact distance, and dEb_hat/dphi_e. (Mid-surface contact,
-  // distance 0, needs a signed distance or an intersection test: the sampled distance never
-  // changes sign; not yet reported.)
+  // Test functions: gap minus the contact distance, the signed gap (negative once the
+  // mid-surface has passed through itself), and dEb_hat/dphi_e.
   const auto eb_hat = [&](const Eigen::VectorXd& x, double phi) {
     model.set_excess_angle(phi);
     return model.energy_breakdown(x).normalized_bending();
@@ -271,6 +275,12 @@ int run(int argc, char** argv) {
   const std::vector<BranchEvent> events = {
       {"contact", [&](const BranchSample& s) { return gap_of(s.x) - contact_distance; },
        !through_contact},
+      {"midsurface_contact",
+       [&](const BranchSample& s) {
+         model.set_excess_angle(s.parameter);
+         return signed_self_gap(model, s.x, crossing_options);
+       },
+       false},
       {"eb_max",
        [&](const BranchSample& s) {
          const double eps = 1e-4;
