@@ -25,6 +25,7 @@
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
+#include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace {
 
@@ -42,6 +43,7 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
                       (default 0; see docs/validation.md)
   --tolerance T       corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
+  --eigenmodes K      at each special point write the K lowest eigenmodes (default 2; 0 = off)
   --out DIR           output directory (default: the scene's output.directory)
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
@@ -149,6 +151,7 @@ int run(int argc, char** argv) {
   const std::string resume = cl.text("--resume", "");
   const double tolerance = cl.number("--tolerance", 1e-6);
   const double core_radius = cl.number("--core-radius", 0.0);
+  const int eigenmodes = cl.integer("--eigenmodes", 2);
   cl.reject_unknown();
   validate_scene(scene);
 
@@ -242,13 +245,35 @@ int run(int argc, char** argv) {
       ev << "  " << events_json[i] << (i + 1 < events_json.size() ? ",\n" : "\n");
     ev << "]\n";
   };
+  int special_index = 0;
   const auto on_special = [&](const SpecialPoint& sp) {
     std::ostringstream j;
     j << std::setprecision(10) << "{\"kind\": \"" << to_string(sp.kind) << "\", \"phi_e\": "
       << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
       << ", \"negative_before\": " << sp.negative_before
-      << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width
-      << "}";
+      << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width;
+    if (eigenmodes > 0) {
+      // The lowest eigenpairs of the pinned Hessian there, and their mode shapes (the state
+      // displaced along each mode by 5 % of R at its largest) as VTK files.
+      model.set_excess_angle(sp.parameter);
+      EigenpairOptions eo;
+      eo.count = eigenmodes;
+      const Eigenpairs pairs = lowest_eigenpairs(model, sp.x, pinned, eo);
+      j << ", \"eigenvalues\": [";
+      for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+        j << (k ? ", " : "") << pairs.values(k);
+        if (scene.output.write_vtk) {
+          const Eigen::VectorXd v = pairs.vectors.col(k);
+          const double scale = 0.05 * scene.geometry.radius / v.lpNorm<Eigen::Infinity>();
+          std::ostringstream name;
+          name << "special_" << special_index << "_mode_" << k << ".vtu";
+          write_vtu(out_dir + "/" + name.str(), shell_snapshot(model, sp.x + scale * v, 1));
+        }
+      }
+      j << "]";
+    }
+    ++special_index;
+    j << "}";
     events_json.push_back(j.str());
     write_events();
     std::printf("# %s at phi_e = %.7f (multiplicity %d, negative %d -> %d)\n", to_string(sp.kind),
