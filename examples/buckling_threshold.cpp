@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/guarded_main.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -92,10 +93,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "buckling_threshold: error: %s\n", e.what());
-    return 2;
-  }
+  return growshell::examples::guarded_main("buckling_threshold", run, argc, argv);
 }

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/guarded_main.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/io/shell_snapshot.hpp"
@@ -176,10 +177,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "econe_at: error: %s\n", e.what());
-    return 2;
-  }
+  return growshell::examples::guarded_main("econe_at", run, argc, argv);
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/guarded_main.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/analysis/self_distance.hpp"
 #include "libshell/analysis/self_intersection.hpp"
@@ -370,10 +371,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "trace_disc: error: %s\n", e.what());
-    return 2;
-  }
+  return growshell::examples::guarded_main("trace_disc", run, argc, argv);
 }
