@@ -1,5 +1,7 @@
 #include "solvers/newton/cholmod_factorization.hpp"
 
+#include "solvers/newton/upper_triangle_check.hpp"
+
 #include <cholmod.h>
 
 #include <cmath>
@@ -128,31 +130,10 @@ void require_impl(const void* impl, const char* what) {
 
 void CholmodFactorization::analyze(const Eigen::SparseMatrix<double>& upper) {
   require_impl(impl_.get(), "analyze");
-  if (upper.rows() != upper.cols()) {
-    throw std::invalid_argument("CholmodFactorization::analyze: matrix is " +
-                                std::to_string(upper.rows()) + " x " +
-                                std::to_string(upper.cols()) + ", must be square");
-  }
-  if (!upper.isCompressed()) {
-    throw std::invalid_argument(
-        "CholmodFactorization::analyze: matrix must be in compressed storage (makeCompressed)");
-  }
+  check_upper_triangle(upper, "CholmodFactorization::analyze");
   const Eigen::Index n = upper.cols();
   const int* outer = upper.outerIndexPtr();
   const int* inner = upper.innerIndexPtr();
-  for (Eigen::Index col = 0; col < n; ++col) {
-    for (int k = outer[col]; k < outer[col + 1]; ++k) {
-      if (inner[k] > col) {
-        throw std::invalid_argument("CholmodFactorization::analyze: entry (" +
-                                    std::to_string(inner[k]) + ", " + std::to_string(col) +
-                                    ") lies below the diagonal; pass the upper triangle only");
-      }
-      if (k > outer[col] && inner[k] <= inner[k - 1]) {
-        throw std::invalid_argument("CholmodFactorization::analyze: row indices of column " +
-                                    std::to_string(col) + " are not strictly increasing");
-      }
-    }
-  }
 
   Impl& s = *impl_;
   s.free_factor();

@@ -1,5 +1,7 @@
 #include "solvers/newton/fixed_dof_elimination.hpp"
 
+#include "solvers/newton/upper_triangle_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,12 +12,8 @@ namespace growshell {
 FixedDofElimination::FixedDofElimination(const Eigen::SparseMatrix<double>& pattern,
                                          const std::vector<Eigen::Index>& fixed_dofs)
     : fixed_(fixed_dofs) {
+  check_upper_triangle(pattern, "Hessian pattern");
   const Eigen::Index n = pattern.rows();
-  if (pattern.cols() != n)
-    throw std::invalid_argument("Hessian pattern is " + std::to_string(pattern.rows()) + " x " +
-                                std::to_string(pattern.cols()) + ", not square");
-  if (!pattern.isCompressed())
-    throw std::invalid_argument("Hessian pattern must be a compressed matrix");
   is_fixed_.assign(static_cast<std::size_t>(n), 0);
   for (const Eigen::Index d : fixed_dofs) {
     if (d < 0 || d >= n)
@@ -32,10 +30,6 @@ FixedDofElimination::FixedDofElimination(const Eigen::SparseMatrix<double>& patt
   for (Eigen::Index col = 0; col < n; ++col) {
     for (int k = outer[col]; k < outer[col + 1]; ++k) {
       const Eigen::Index row = inner[k];
-      if (row > col)
-        throw std::invalid_argument("Hessian pattern has entry (" + std::to_string(row) + ", " +
-                                    std::to_string(col) +
-                                    ") below the diagonal; the upper triangle is expected");
       if (row == col)
         diagonal_[static_cast<std::size_t>(col)] = k;
       else if (is_fixed(row) || is_fixed(col))

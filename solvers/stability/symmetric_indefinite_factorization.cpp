@@ -1,5 +1,7 @@
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
 
+#include "solvers/newton/upper_triangle_check.hpp"
+
 #include <dmumps_c.h>
 
 #include <cmath>
@@ -187,11 +189,7 @@ SymmetricIndefiniteFactorization& SymmetricIndefiniteFactorization::operator=(
 
 void SymmetricIndefiniteFactorization::analyze(const Eigen::SparseMatrix<double>& upper) {
   require_impl(impl_.get(), "analyze");
-  if (upper.rows() != upper.cols()) {
-    throw std::invalid_argument("SymmetricIndefiniteFactorization::analyze: matrix is " +
-                                std::to_string(upper.rows()) + " x " +
-                                std::to_string(upper.cols()) + ", must be square");
-  }
+  check_upper_triangle(upper, "SymmetricIndefiniteFactorization::analyze");
   if (upper.rows() == 0) {
     throw std::invalid_argument("SymmetricIndefiniteFactorization::analyze: matrix is empty");
   }
@@ -200,21 +198,11 @@ void SymmetricIndefiniteFactorization::analyze(const Eigen::SparseMatrix<double>
                                 std::to_string(upper.rows()) +
                                 " exceeds MUMPS's 32-bit index range");
   }
-  if (!upper.isCompressed()) {
-    throw std::invalid_argument(
-        "SymmetricIndefiniteFactorization::analyze: matrix must be in compressed storage "
-        "(makeCompressed)");
-  }
   const Eigen::Index n = upper.cols();
   const int* outer = upper.outerIndexPtr();
   const int* inner = upper.innerIndexPtr();
   for (Eigen::Index col = 0; col < n; ++col) {
     for (int k = outer[col]; k < outer[col + 1]; ++k) {
-      if (inner[k] > col) {
-        throw std::invalid_argument("SymmetricIndefiniteFactorization::analyze: entry (" +
-                                    std::to_string(inner[k]) + ", " + std::to_string(col) +
-                                    ") lies below the diagonal; pass the upper triangle only");
-      }
       if (!std::isfinite(upper.valuePtr()[k])) {
         throw std::invalid_argument("SymmetricIndefiniteFactorization::analyze: entry (" +
                                     std::to_string(inner[k]) + ", " + std::to_string(col) +
