@@ -209,8 +209,16 @@ int run(int argc, char** argv) {
   crossing_options.exclusion_radius = gap_options.exclusion_radius;
   crossing_options.core_radius = gap_options.core_radius;
   crossing_options.core_center = gap_options.core_center;
+  // The event functions and the progress line all need the gap of the same accepted sample:
+  // the spatial search runs once per state.
+  Eigen::VectorXd gap_state;
+  double gap_value = 0.0;
   const auto gap_of = [&](const Eigen::VectorXd& x) {
-    return smallest_self_distance(model, x, gap_options).distance;
+    if (gap_state.size() != x.size() || gap_state != x) {
+      gap_value = smallest_self_distance(model, x, gap_options).distance;
+      gap_state = x;
+    }
+    return gap_value;
   };
   const auto snapshot = [&](const BranchSample& s, const std::string& name) {
     if (!scene.output.write_vtk) return;
@@ -303,8 +311,7 @@ int run(int argc, char** argv) {
        !through_contact},
       {"midsurface_contact",
        [&](const BranchSample& s) {
-         model.set_excess_angle(s.parameter);
-         return signed_self_gap(model, s.x, crossing_options);
+         return signed_gap(find_self_intersection(model, s.x, crossing_options), gap_of(s.x));
        },
        false},
       {"eb_max",

@@ -366,9 +366,13 @@ double signed_self_gap(const ShellModel& model, const Eigen::Ref<const Eigen::Ve
   distance_options.core_radius = options.core_radius;
   distance_options.core_center = options.core_center;
   const double d = smallest_self_distance(model, x, distance_options).distance;
-  if (!find_self_intersection_unchecked(model, x, options).intersects) return d;
-  // An admissible intersecting pair has admissible sample pairs, so d is finite here.
-  return -std::max(d, std::numeric_limits<double>::min());
+  return signed_gap(find_self_intersection_unchecked(model, x, options), d);
+}
+
+double signed_gap(const SelfIntersection& intersection, double distance) {
+  // An admissible intersecting pair has admissible sample pairs, so distance is finite then.
+  return intersection.intersects ? -std::max(distance, std::numeric_limits<double>::min())
+                                 : distance;
 }
 
 }  // namespace growshell

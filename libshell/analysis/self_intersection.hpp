@@ -87,6 +87,11 @@ SelfIntersection find_self_intersection(const ShellModel& model, const Eigen::Re
 /// rather than 0 when the surfaces touch, so the gap jumps from about +spacing to about
 /// -spacing. Locate the event by bisection on the sign, not by interpolating the value.
 /// Throws like find_self_intersection.
+/// The signed gap from a distance `distance` = smallest_self_distance(...).distance already
+/// computed with the same options: +distance without an intersection, -max(distance,
+/// DBL_MIN) with one. signed_self_gap is this of its own two searches.
+double signed_gap(const SelfIntersection& intersection, double distance);
+
 double signed_self_gap(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                        const SelfIntersectionOptions& options);
 
