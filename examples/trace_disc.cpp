@@ -6,6 +6,7 @@
 // follows it (through folds, stable or not) up to first contact or --phi-max. Each converged
 // point is appended to branch.csv and saved under states/ as soon as it converges; --resume
 // restarts from any saved point, forward or --backward.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -18,6 +19,8 @@
 
 #include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/saved_point.hpp"
+#include "libshell/analysis/core_radius.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/analysis/self_distance.hpp"
 #include "libshell/analysis/self_intersection.hpp"
@@ -31,6 +34,8 @@
 namespace {
 
 using namespace growshell;
+using examples::load_point;
+using examples::save_point;
 
 const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --h H               thickness (overrides the scene)
@@ -49,34 +54,6 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
 )";
-
-/// Saved point: phi_e, dlambda/ds, then x and dx/ds, one number per line (full precision).
-void save_point(const std::string& path, const BranchSample& s) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out << std::setprecision(17) << s.parameter << '\n' << s.tangent_parameter << '\n'
-      << s.x.size() << '\n';
-  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.x(i) << '\n';
-  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.tangent_state(i) << '\n';
-}
-
-BranchSample load_point(const std::string& path, Eigen::Index n) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read resume file " + path);
-  BranchSample s;
-  Eigen::Index size = 0;
-  in >> s.parameter >> s.tangent_parameter >> size;
-  if (!in || size != n)
-    throw std::runtime_error("resume file " + path + " does not fit this scene (" +
-                             std::to_string(size) + " unknowns, expected " + std::to_string(n) +
-                             ")");
-  s.x.resize(n);
-  s.tangent_state.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) in >> s.x(i);
-  for (Eigen::Index i = 0; i < n; ++i) in >> s.tangent_state(i);
-  if (!in) throw std::runtime_error("resume file " + path + " is truncated");
-  return s;
-}
 
 /// Out-of-plane field r^n cos(n theta): the mirror-symmetric member of the n-fold pair.
 Eigen::VectorXd mode_hint(const ShellModel& model, int n) {
@@ -191,7 +168,7 @@ int run(int argc, char** argv) {
   branch << std::setprecision(12);
   if (resume.empty())
     branch << "phi_e,E_stretch,E_bend,Eb_hat,area,min_gap,n_negative,corrector_iterations,"
-              "arclength,folds\n";
+              "arclength,folds,core_radius\n";
   std::vector<std::string> events_json;
   std::vector<CollectionEntry> snapshots;
   int point_index = 0;
@@ -233,13 +210,17 @@ int run(int argc, char** argv) {
     const ShellEnergyBreakdown e = model.energy_breakdown(s.x);
     const double gap = gap_of(s.x);
     const int folds = analyze_rim_folds(model, s.x).folds;
+    // R_c: the radius about the growth centre holding half the stretching energy.
+    const double core = e.stretching > 0.0
+                            ? stretching_core_radius(model, s.x, 0.5, model.settings().growth.center).radius
+                            : 0.0;
     std::printf("%9.5f %13.6e %13.6e %10.5f %10.3e %4d %3d %5d\n", s.parameter, e.stretching,
                 e.bending, e.normalized_bending(), gap, s.negative_eigenvalues,
                 s.corrector_iterations, folds);
     branch << s.parameter << ',' << e.stretching << ',' << e.bending << ','
            << e.normalized_bending() << ',' << e.current_area << ',' << gap << ','
            << s.negative_eigenvalues << ',' << s.corrector_iterations << ',' << s.arclength << ','
-           << folds << '\n';
+           << folds << ',' << core << '\n';
     branch.flush();
     std::ostringstream name;
     name << "point_" << std::setw(5) << std::setfill('0') << point_index;
@@ -327,6 +308,8 @@ int run(int argc, char** argv) {
   std::printf("%9s %13s %13s %10s %10s %4s %3s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat",
               "min_gap", "neg", "it", "folds");
   BranchTrace trace;
+  TraceCost flat_cost;
+  const auto wall_start = std::chrono::steady_clock::now();
   if (!resume.empty()) {
     const BranchSample start = load_point(resume, model.dimension());
     const double sign = scene.continuation.direction == ContinuationDirection::Backward
@@ -344,12 +327,13 @@ int run(int argc, char** argv) {
     flat_options.max_step = 0.01;
     flat_options.max_special_points = scene.continuation.mode - 1;
     std::vector<SpecialPoint> flat_points;
-    const BranchTrace flat = trace_branch(
+    BranchTrace flat = trace_branch(
         family, X, scene.continuation.phi_start, +1, pinned, flat_options, {},
         [&](const SpecialPoint& sp) {
           flat_points.push_back(sp);
           on_special(sp);
         });
+    flat_cost = flat.cost;
     const Eigen::VectorXd hint = mode_hint(model, scene.continuation.mode);
     const SpecialPoint* chosen = nullptr;
     for (const SpecialPoint& sp : flat_points) {
@@ -369,6 +353,28 @@ int run(int argc, char** argv) {
                                pinned, options, on_sample, on_special, events, on_event);
   }
   snapshot(trace.last, "last.vtu");
+  // Where the time went (flat branch + cone), also written to DIR/cost.json.
+  const TraceCost& c = trace.cost;
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double assembly = flat_cost.assembly_seconds + c.assembly_seconds;
+  const double factorization = flat_cost.factorization_seconds + c.factorization_seconds;
+  const double solves = flat_cost.solve_seconds + c.solve_seconds;
+  const double events_s = flat_cost.event_seconds + c.event_seconds;
+  const double output = flat_cost.callback_seconds + c.callback_seconds;
+  std::printf("# cost: %.1f s wall, %d linearisations (assembly %.1f s), %d LDL^T factorisations "
+              "with inertia (%.1f s), %d solves (%.1f s), events %.1f s, output %.1f s\n",
+              wall, flat_cost.linearizations + c.linearizations, assembly,
+              flat_cost.factorizations + c.factorizations, factorization,
+              flat_cost.solves + c.solves, solves, events_s, output);
+  std::ofstream(out_dir + "/cost.json")
+      << std::setprecision(6) << "{\"wall_seconds\": " << wall
+      << ", \"cone_steps\": " << trace.steps << ", \"failed_steps\": " << trace.failed_steps
+      << ", \"linearizations\": " << flat_cost.linearizations + c.linearizations
+      << ", \"factorizations\": " << flat_cost.factorizations + c.factorizations
+      << ", \"solves\": " << flat_cost.solves + c.solves << ", \"assembly_seconds\": " << assembly
+      << ", \"factorization_seconds\": " << factorization << ", \"solve_seconds\": " << solves
+      << ", \"event_seconds\": " << events_s << ", \"output_seconds\": " << output << "}\n";
   std::printf("# trace ended: %s (%d steps, %d failed)\n", trace.message.c_str(), trace.steps,
               trace.failed_steps);
   std::printf("# wrote %s/branch.csv, events.json, states/, branch.pvd\n", out_dir.c_str());

@@ -73,6 +73,11 @@ class ShellModel final : public SparseObjective {
   /// Mean stretching energy density U_s of each element (dimensionless strain squared).
   Eigen::VectorXd element_stretching_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
+  /// Energy parts of element e alone at x (its share of energy_breakdown), 0 <= e <
+  /// num_elements(); e is not range-checked.
+  ShellEnergyBreakdown element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         Eigen::Index e) const;
+
   /// Limit-surface positions (metres) of the element corner vertices, in the order of
   /// sheet_vertices().
   Eigen::MatrixX3d limit_positions(const Eigen::Ref<const Eigen::VectorXd>& x) const;
@@ -96,9 +101,6 @@ class ShellModel final : public SparseObjective {
   Eigen::Matrix<double, 36, 1> element_coordinates(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                    Eigen::Index e) const;
   int thread_count() const;
-  /// Energy parts of element e alone.
-  ShellEnergyBreakdown element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                         Eigen::Index e) const;
 
   ShellModelSettings settings_;
   MeshTopology topology_;
