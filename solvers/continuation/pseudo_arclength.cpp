@@ -1,6 +1,7 @@
 #include "solvers/continuation/pseudo_arclength.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +10,21 @@
 
 namespace growshell {
 namespace {
+
+/// Adds the wall time of its scope to a counter.
+class ScopedSeconds {
+ public:
+  explicit ScopedSeconds(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedSeconds() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  ScopedSeconds(const ScopedSeconds&) = delete;
+  ScopedSeconds& operator=(const ScopedSeconds&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 /// Newton on the bordered system and the tangent/inertia at converged points. Owns the
 /// Hessian buffer and the factorisation (analysed once).
@@ -40,26 +56,36 @@ class BranchSolver {
     } catch (const std::invalid_argument&) {
       return false;
     }
-    const double e = family_.evaluate(x, &gradient_, &hessian_);
+    ++cost_.linearizations;
+    double e = 0.0;
+    {
+      ScopedSeconds timer(cost_.assembly_seconds);
+      e = family_.evaluate(x, &gradient_, &hessian_);
+    }
     if (!std::isfinite(e) || !gradient_.allFinite()) return false;
     fixed_.zero_fixed(gradient_);
     fixed_.apply(hessian_);
     const Eigen::Map<const Eigen::VectorXd> values(hessian_.valuePtr(), hessian_.nonZeros());
     if (!values.allFinite()) return false;
     try {
+      ++cost_.factorizations;
+      ScopedSeconds timer(cost_.factorization_seconds);
       factorization_.factorize(hessian_);
     } catch (const std::runtime_error&) {
       return false;
     }
     if (factorization_.zero_pivots() > 0) return false;
-    parameter_derivative_ = family_.gradient_parameter_derivative(x);
+    {
+      ScopedSeconds timer(cost_.assembly_seconds);
+      parameter_derivative_ = family_.gradient_parameter_derivative(x);
+    }
     fixed_.zero_fixed(parameter_derivative_);
     return parameter_derivative_.allFinite();
   }
 
   /// Unit tangent at the last linearisation, oriented along (rx, rl).
-  void tangent(const Eigen::VectorXd& rx, double rl, Eigen::VectorXd& tx, double& tl) const {
-    Eigen::VectorXd b = factorization_.solve(parameter_derivative_);
+  void tangent(const Eigen::VectorXd& rx, double rl, Eigen::VectorXd& tx, double& tl) {
+    Eigen::VectorXd b = timed_solve(parameter_derivative_);
     fixed_.zero_fixed(b);
     const double s = 1.0 / std::sqrt(weight_ * b.squaredNorm() + 1.0);
     tx = -s * b;
@@ -73,9 +99,9 @@ class BranchSolver {
   int negative_eigenvalues() const { return factorization_.negative_eigenvalues(); }
 
   /// H^-1 v at the last linearisation (fixed entries zero).
-  Eigen::VectorXd solve_hessian(Eigen::VectorXd v) const {
+  Eigen::VectorXd solve_hessian(Eigen::VectorXd v) {
     fixed_.zero_fixed(v);
-    Eigen::VectorXd y = factorization_.solve(v);
+    Eigen::VectorXd y = timed_solve(v);
     fixed_.zero_fixed(y);
     return y;
   }
@@ -98,8 +124,8 @@ class BranchSolver {
         return true;
       }
       if (it == options_.max_corrector_iterations) return false;
-      Eigen::VectorXd a = factorization_.solve(gradient_);
-      Eigen::VectorXd b = factorization_.solve(parameter_derivative_);
+      Eigen::VectorXd a = timed_solve(gradient_);
+      Eigen::VectorXd b = timed_solve(parameter_derivative_);
       fixed_.zero_fixed(a);
       fixed_.zero_fixed(b);
       const double c = weight_ * tx.dot(x - xp) + tl * (lambda - lp);
@@ -113,7 +139,15 @@ class BranchSolver {
     return false;
   }
 
+  TraceCost& cost() { return cost_; }
+
  private:
+  Eigen::VectorXd timed_solve(const Eigen::VectorXd& rhs) {
+    ++cost_.solves;
+    ScopedSeconds timer(cost_.solve_seconds);
+    return factorization_.solve(rhs);
+  }
+
   ParametrizedObjective& family_;
   Eigen::SparseMatrix<double> hessian_;
   FixedDofElimination fixed_;
@@ -122,6 +156,7 @@ class BranchSolver {
   SymmetricIndefiniteFactorization factorization_;
   Eigen::VectorXd gradient_;
   Eigen::VectorXd parameter_derivative_;
+  TraceCost cost_;
 };
 
 }  // namespace
@@ -160,11 +195,13 @@ Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<co
   return y;
 }
 
-BranchTrace trace_branch_along(ParametrizedObjective& family,
+namespace {
+
+/// The trace proper; trace_branch_along wraps it to collect the solver's cost.
+BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& family,
                                const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
                                const Eigen::Ref<const Eigen::VectorXd>& direction_state,
                                double direction_parameter,
-                               const std::vector<Eigen::Index>& fixed_dofs,
                                const ArclengthOptions& options,
                                const std::function<void(const BranchSample&)>& on_sample,
                                const std::function<void(const SpecialPoint&)>& on_special,
@@ -175,10 +212,16 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
     throw std::invalid_argument("ArclengthOptions: need 0 < min_step <= initial_step <= max_step");
   if (!(options.gradient_tolerance > 0.0))
     throw std::invalid_argument("ArclengthOptions: gradient_tolerance must be > 0");
-  if (x0.size() != family.dimension())
-    throw std::invalid_argument("trace_branch: x0 has the wrong size");
-  BranchSolver solver(family, fixed_dofs, options);
   BranchTrace out;
+  // The caller's callbacks and the event test functions, timed.
+  const auto sample_done = [&](const BranchSample& s) {
+    ScopedSeconds timer(solver.cost().callback_seconds);
+    if (on_sample) on_sample(s);
+  };
+  const auto event_value = [&](const BranchEvent& e, const BranchSample& s) {
+    ScopedSeconds timer(solver.cost().event_seconds);
+    return e.value(s);
+  };
 
   // The start: correct (x0, lambda0) on the hyperplane orthogonal to the given direction and
   // orient its tangent along that direction.
@@ -194,10 +237,10 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
       return out;
     }
     out.last = std::move(start);
-    if (on_sample) on_sample(out.last);
+    sample_done(out.last);
   }
   std::vector<double> event_values;
-  for (const BranchEvent& e : events) event_values.push_back(e.value(out.last));
+  for (const BranchEvent& e : events) event_values.push_back(event_value(e, out.last));
 
   double step = options.initial_step;
   const double cos_max = std::cos(options.max_tangent_angle);
@@ -265,12 +308,15 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
       sp.multiplicity = std::abs(next.negative_eigenvalues - p.negative_eigenvalues);
       sp.bracket_width = std::abs(hi.parameter - lambda_lo);
       out.special_points.push_back(sp);
-      if (on_special) on_special(sp);
+      if (on_special) {
+        ScopedSeconds timer(solver.cost().callback_seconds);
+        on_special(sp);
+      }
       if (options.max_special_points > 0 &&
           static_cast<int>(out.special_points.size()) >= options.max_special_points) {
         out.last = std::move(next);
         ++out.steps;
-        if (on_sample) on_sample(out.last);
+        sample_done(out.last);
         out.reached_bound = true;
         out.message = "found max_special_points special points";
         family.set_parameter(out.last.parameter);
@@ -281,7 +327,7 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
     // Events: sign changes of the test functions, located like special points.
     bool stop = false;
     std::vector<double> next_values;
-    for (const BranchEvent& e : events) next_values.push_back(e.value(next));
+    for (const BranchEvent& e : events) next_values.push_back(event_value(e, next));
     for (std::size_t k = 0; k < events.size(); ++k) {
       if (!(event_values[k] * next_values[k] < 0.0)) continue;
       double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter;
@@ -293,7 +339,7 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
         if (!solver.correct(p.x + s_mid * p.tangent_state, p.parameter + s_mid * p.tangent_parameter,
                             p.tangent_state, p.tangent_parameter, mid))
           break;
-        if (events[k].value(mid) * event_values[k] > 0.0) {
+        if (event_value(events[k], mid) * event_values[k] > 0.0) {
           s_lo = s_mid;
           lambda_lo = mid.parameter;
         } else {
@@ -304,7 +350,10 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
       LocatedEvent located{events[k].kind, 0.5 * (hi.parameter + lambda_lo), hi.x,
                            std::abs(hi.parameter - lambda_lo)};
       out.events.push_back(located);
-      if (on_event) on_event(located);
+      if (on_event) {
+        ScopedSeconds timer(solver.cost().callback_seconds);
+        on_event(located);
+      }
       if (events[k].stop) {
         stop = true;
         hi.arclength = p.arclength + s_hi;
@@ -316,7 +365,7 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
 
     out.last = std::move(next);
     ++out.steps;
-    if (on_sample) on_sample(out.last);
+    sample_done(out.last);
     if (stop) {
       out.reached_bound = true;
       out.message = "stopped at event '" + out.events.back().kind + "'";
@@ -331,6 +380,31 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
   }
   out.reached_bound = true;
   out.message = "reached max_steps";
+  return out;
+}
+
+}  // namespace
+
+BranchTrace trace_branch_along(ParametrizedObjective& family,
+                               const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+                               const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                               double direction_parameter,
+                               const std::vector<Eigen::Index>& fixed_dofs,
+                               const ArclengthOptions& options,
+                               const std::function<void(const BranchSample&)>& on_sample,
+                               const std::function<void(const SpecialPoint&)>& on_special,
+                               const std::vector<BranchEvent>& events,
+                               const std::function<void(const LocatedEvent&)>& on_event) {
+  if (x0.size() != family.dimension())
+    throw std::invalid_argument("trace_branch: x0 has the wrong size");
+  const auto start = std::chrono::steady_clock::now();
+  BranchSolver solver(family, fixed_dofs, options);
+  BranchTrace out = trace_with_solver(solver, family, x0, lambda0, direction_state,
+                                      direction_parameter, options, on_sample,
+                                      on_special, events, on_event);
+  out.cost = solver.cost();
+  out.cost.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

@@ -72,6 +72,21 @@ struct LocatedEvent {
   double bracket_width = 0.0;
 };
 
+/// Where a trace spent its effort (wall-clock seconds, steady clock). The inertia (stability)
+/// comes out of the same LDL^T factorisation that the corrector uses, so it has no separate
+/// cost.
+struct TraceCost {
+  int linearizations = 0;      ///< energy/gradient/Hessian assemblies (each then factorised)
+  int factorizations = 0;      ///< LDL^T factorisations that succeeded or failed
+  int solves = 0;              ///< triangular solves with the factorisation
+  double assembly_seconds = 0.0;       ///< family.evaluate + d(gradient)/d(lambda)
+  double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
+  double solve_seconds = 0.0;
+  double event_seconds = 0.0;   ///< evaluating the event test functions
+  double callback_seconds = 0.0;  ///< on_sample / on_special / on_event (the caller's output)
+  double total_seconds = 0.0;
+};
+
 struct BranchTrace {
   std::vector<SpecialPoint> special_points;
   std::vector<LocatedEvent> events;
@@ -80,6 +95,7 @@ struct BranchTrace {
   std::string message;     ///< why the trace ended
   int steps = 0;
   int failed_steps = 0;
+  TraceCost cost;  ///< of this call (the branch-point search and events included)
 };
 
 /// Traces the branch through the equilibrium (x0, lambda0) — x0 must satisfy g(x0; lambda0)
