@@ -6,6 +6,7 @@
 // follows it (through folds, stable or not) up to first contact or --phi-max. Each converged
 // point is appended to branch.csv and saved under states/ as soon as it converges; --resume
 // restarts from any saved point, forward or --backward.
+#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +55,34 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
 )";
+
+/// d/dalpha of Q(alpha) x(Q(alpha)^T X) at alpha = 0 (Q: rotation about the growth axis):
+/// e_z x x - F (e_z x X), with the deformation gradient F of each vertex fitted by least
+/// squares over its one-ring; pinned dofs zeroed.
+Eigen::VectorXd pattern_rotation(const ShellModel& model, const Eigen::VectorXd& x,
+                                 const std::vector<Eigen::Index>& pinned) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::Vector3d c = model.settings().growth.center;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(x.size());
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const auto& ring = model.topology().one_ring(static_cast<int>(v));
+    if (ring.size() < 2) continue;
+    Eigen::Matrix2d XtX = Eigen::Matrix2d::Zero();
+    Eigen::Matrix<double, 3, 2> xtX = Eigen::Matrix<double, 3, 2>::Zero();
+    for (const int u : ring) {
+      const Eigen::Vector2d dX = X.segment<2>(3 * u) - X.segment<2>(3 * v);
+      const Eigen::Vector3d dx = x.segment<3>(3 * u) - x.segment<3>(3 * v);
+      XtX += dX * dX.transpose();
+      xtX += dx * dX.transpose();
+    }
+    const Eigen::Matrix<double, 3, 2> F = xtX * XtX.inverse();
+    const Eigen::Vector2d R = X.segment<2>(3 * v) - c.head<2>();
+    const Eigen::Vector3d r = x.segment<3>(3 * v) - c;
+    out.segment<3>(3 * v) = Eigen::Vector3d(-r.y(), r.x(), 0.0) - F * Eigen::Vector2d(-R.y(), R.x());
+  }
+  for (const Eigen::Index d : pinned) out(d) = 0.0;
+  return out;
+}
 
 /// Out-of-plane field r^n cos(n theta): the mirror-symmetric member of the n-fold pair.
 Eigen::VectorXd mode_hint(const ShellModel& model, int n) {
@@ -249,6 +278,18 @@ int run(int argc, char** argv) {
       EigenpairOptions eo;
       eo.count = eigenmodes;
       const Eigenpairs pairs = lowest_eigenpairs(model, sp.x, pinned, eo);
+      // How much each mode is the fold pattern turning about the axis over the material
+      // (x(X) -> Q x(Q^T X), Q a rotation about the growth axis): on a perfect disc that costs
+      // nothing; on the discrete disc its eigenvalue is only nearly zero and changes sign
+      // along the branch, so a special point whose critical mode is this (overlap near 1) is
+      // the mesh's orientation mode, not a bifurcation of the continuum problem.
+      const Eigen::VectorXd rotation = pattern_rotation(model, sp.x, pinned);
+      j << ", \"orientation_overlap\": [";
+      for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+        const Eigen::VectorXd v = pairs.vectors.col(k);
+        j << (k ? ", " : "") << std::abs(v.dot(rotation)) / (v.norm() * rotation.norm());
+      }
+      j << "]";
       j << ", \"eigenvalues\": [";
       for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
         j << (k ? ", " : "") << pairs.values(k);
