@@ -60,7 +60,16 @@ struct Row {
   double phi = 0.0;
   std::vector<double> gap, radius;
   bool crosses = false;
+  double crossing_radius_a = 0.0, crossing_radius_b = 0.0;  // reference radii of the pair
 };
+
+/// Reference distance of element e's centroid from the growth centre.
+double element_radius(const ShellModel& model, Eigen::Index e) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
+  const Eigen::Vector3d c = (X.segment<3>(3 * f[0]) + X.segment<3>(3 * f[1]) + X.segment<3>(3 * f[2])) / 3.0;
+  return (c - model.settings().growth.center).head<2>().norm();
+}
 
 int run(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') {
@@ -115,7 +124,12 @@ int run(int argc, char** argv) {
     so.samples_per_edge = samples;
     so.core_radius = bands.front();
     so.core_center = model.settings().growth.center;
-    row.crosses = find_self_intersection(model, s.x, so).intersects;
+    const SelfIntersection crossing = find_self_intersection(model, s.x, so);
+    row.crosses = crossing.intersects;
+    if (row.crosses) {
+      row.crossing_radius_a = element_radius(model, crossing.element_a);
+      row.crossing_radius_b = element_radius(model, crossing.element_b);
+    }
     csv << row.phi;
     for (std::size_t k = 0; k < bands.size(); ++k) csv << ',' << row.gap[k] << ',' << row.radius[k];
     csv << ',' << (row.crosses ? 1 : 0) << '\n';
@@ -139,8 +153,9 @@ int run(int argc, char** argv) {
   }
   for (std::size_t i = 1; i < rows.size(); ++i)
     if (!rows[i - 1].crosses && rows[i].crosses) {
-      std::printf("mid-surface first crosses itself between phi_e = %.5f and %.5f\n", rows[i - 1].phi,
-                  rows[i].phi);
+      std::printf("mid-surface first crosses itself between phi_e = %.5f and %.5f (elements at "
+                  "reference radius %.3f and %.3f)\n",
+                  rows[i - 1].phi, rows[i].phi, rows[i].crossing_radius_a, rows[i].crossing_radius_b);
       break;
     }
   return 0;
