@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// Contact zones of a solved contact state: the active pairs grouped by proximity, each with
+/// its total force and the plane through it (normal = force-weighted mean of the pair
+/// normals), and the angle gamma between the planes of the two largest zones (physics brief:
+/// gamma = pi/2 for the symmetric e-cone at first contact).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "libshell/contact/contact_gap_constraints.hpp"
+
+namespace growshell {
+
+/// One zone (global Cartesian basis, SI units).
+struct ContactZone {
+  std::vector<Eigen::Index> pairs;  ///< constraint indices of its active pairs
+  double force = 0.0;               ///< sum of the pair forces (N)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();    ///< unit normal of its contact plane
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< force-weighted contact point (m)
+};
+
+/// Zones, largest force first. A pair is active if its force exceeds active_fraction times
+/// the largest force (>= 0); two active pairs belong to the same zone if their contact points
+/// (midpoints of the closest points) are closer than link_distance (m, > 0), transitively.
+/// Pair normals are sign-aligned with the zone's strongest pair before averaging (a normal's
+/// sign only says which primitive is listed first). Throws std::invalid_argument if forces
+/// does not have constraints.count() entries or the parameters are out of range.
+std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
+                                       const Eigen::Ref<const Eigen::VectorXd>& x,
+                                       const Eigen::Ref<const Eigen::VectorXd>& forces,
+                                       double link_distance, double active_fraction = 1e-3);
+
+/// Angle (radians, in [0, pi/2]) between the contact planes of the two largest zones; NaN if
+/// there are fewer than two zones.
+double contact_plane_angle(const std::vector<ContactZone>& zones);
+
+}  // namespace growshell
