@@ -102,15 +102,17 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
                                              const std::vector<Eigen::Index>& fixed_dofs,
                                              const ContactSolveOptions& options,
                                              const ContactSolveResult* warm) {
-  if (!(options.contact_distance > 0.0))
-    throw std::invalid_argument("ContactSolveOptions: contact_distance must be > 0");
-  if (!(options.exclusion_radius > 0.0))
-    throw std::invalid_argument("ContactSolveOptions: exclusion_radius must be > 0");
-  if (!(options.candidate_margin > 0.0))
-    throw std::invalid_argument("ContactSolveOptions: candidate_margin must be > 0");
+  // Finite too: an infinite distance would surface as an error about the broad phase's
+  // query_distance, and an infinite violation_tolerance would silently accept any crossing.
+  if (!(std::isfinite(options.contact_distance) && options.contact_distance > 0.0))
+    throw std::invalid_argument("ContactSolveOptions: contact_distance must be finite and > 0");
+  if (!(std::isfinite(options.exclusion_radius) && options.exclusion_radius > 0.0))
+    throw std::invalid_argument("ContactSolveOptions: exclusion_radius must be finite and > 0");
+  if (!(std::isfinite(options.candidate_margin) && options.candidate_margin > 0.0))
+    throw std::invalid_argument("ContactSolveOptions: candidate_margin must be finite and > 0");
   if (options.max_rounds < 1) throw std::invalid_argument("ContactSolveOptions: max_rounds must be >= 1");
-  if (!(options.violation_tolerance >= 0.0))
-    throw std::invalid_argument("ContactSolveOptions: violation_tolerance must be >= 0");
+  if (!(std::isfinite(options.violation_tolerance) && options.violation_tolerance >= 0.0))
+    throw std::invalid_argument("ContactSolveOptions: violation_tolerance must be finite and >= 0");
   if (x0.size() != model.dimension())
     throw std::invalid_argument("solve_contact_equilibrium: x0 has the wrong size");
 
@@ -171,17 +173,27 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
         return out;
       }
     }
-    // Verify against every pair near the solution, not only the constrained ones.
-    const ContactCandidates near = near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection);
-    out.min_distance = smallest_distance(proxy, merge(near, pairs), x);
-    if (out.min_distance >= allowed) {
+    // Verify against every pair near the solution (edge-edge pairs and all triangles
+    // included, whatever the selection of constrained pairs), not only the constrained ones.
+    const ContactCandidates near = near_contact_pairs(proxy, x, allowed, options.exclusion_radius);
+    const ContactCandidates reached = near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection);
+    out.min_distance = std::min(smallest_distance(proxy, pairs, x), smallest_distance(proxy, near, x));
+    if (near.empty() && out.min_distance >= allowed) {
       out.converged = true;
       out.message = out.used_contact ? "converged with contact" : "converged without contact";
       return out;
     }
-    // Some pair came closer than allowed without being constrained: add every near pair and
-    // solve again from the feasible start.
-    pairs = merge(pairs, near);
+    // Some pair came closer than allowed without being constrained: add it, and the selected
+    // pairs now within reach, and solve again from the feasible start. If nothing new can be
+    // added, another round would repeat the same solve.
+    const ContactCandidates next = merge(pairs, merge(near, reached));
+    if (next.vertex_triangle.rows() == pairs.vertex_triangle.rows() &&
+        next.edge_edge.rows() == pairs.edge_edge.rows()) {
+      out.message = "a constrained pair ends closer than allowed (min distance " +
+                    std::to_string(out.min_distance) + " m); tighten the minimiser's tolerances";
+      return out;
+    }
+    pairs = next;
   }
   out.message = "a pair is still closer than the contact distance after " +
                 std::to_string(options.max_rounds) + " rounds (min distance " +

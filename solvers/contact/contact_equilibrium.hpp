@@ -55,11 +55,13 @@ struct ContactSolveResult {
   Eigen::VectorXd x;
   /// The constrained pairs of the final solve (empty if no pair was near).
   ContactCandidates pairs;
-  /// Contact force of each pair (N, >= 0; KKT multiplier of its gap constraint), in the
-  /// order of ContactGapConstraints (vertex-triangle pairs, then edge-edge pairs).
+  /// KKT multiplier of each pair's constraint (N, >= 0), in the order of
+  /// ContactGapConstraints (vertex-triangle pairs, then edge-edge pairs). It is the pair's
+  /// contact force, except for a mollified edge-edge pair, whose force is multiplier x
+  /// mollifier (contact_zones accounts for that).
   Eigen::VectorXd forces;
-  /// Smallest pair distance at x over all pairs within contact_distance + candidate_margin
-  /// (m); +infinity if there is none.
+  /// Smallest distance at x over the constrained pairs and every pair (edge-edge included)
+  /// closer than contact_distance - violation_tolerance (m); +infinity if there is none.
   double min_distance = 0.0;
   int rounds = 0;           ///< solves done (Newton or Ipopt)
   int iterations = 0;       ///< Newton or Ipopt iterations, summed over the rounds

@@ -30,15 +30,29 @@ std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
   if (!(link_distance > 0.0)) throw std::invalid_argument("contact_zones: link_distance must be > 0");
   if (!(active_fraction >= 0.0)) throw std::invalid_argument("contact_zones: active_fraction must be >= 0");
   std::vector<ContactZone> zones;
-  if (forces.size() == 0) return zones;
-  const double largest = forces.maxCoeff();
+  // A pair's force is its multiplier times its mollifier: a mollified edge-edge constraint
+  // m (d - offset) pushes with multiplier * m along grad d at contact (ContactPairGeometry),
+  // so the bare multiplier of a nearly parallel edge pair overstates its force by 1 / m.
+  std::vector<Eigen::Index> pushing;
+  std::vector<ContactPairGeometry> pushing_geometry;
+  std::vector<double> pushing_force;
+  for (Eigen::Index k = 0; k < forces.size(); ++k)
+    if (forces(k) > 0.0) {
+      pushing.push_back(k);
+      pushing_geometry.push_back(constraints.pair_geometry(x, k));
+      pushing_force.push_back(forces(k) * pushing_geometry.back().mollifier);
+    }
+  double largest = 0.0;
+  for (const double f : pushing_force) largest = std::max(largest, f);
   if (!(largest > 0.0)) return zones;
   std::vector<Eigen::Index> active;
   std::vector<ContactPairGeometry> geometry;
-  for (Eigen::Index k = 0; k < forces.size(); ++k)
-    if (forces(k) > active_fraction * largest) {
-      active.push_back(k);
-      geometry.push_back(constraints.pair_geometry(x, k));
+  std::vector<double> force;
+  for (std::size_t i = 0; i < pushing.size(); ++i)
+    if (pushing_force[i] > active_fraction * largest) {
+      active.push_back(pushing[i]);
+      geometry.push_back(pushing_geometry[i]);
+      force.push_back(pushing_force[i]);
     }
   const int n = static_cast<int>(active.size());
   std::vector<Eigen::Vector3d> point(static_cast<std::size_t>(n));
@@ -65,12 +79,12 @@ std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
   for (ContactZone& z : zones) {
     // Align every normal with the zone's strongest pair, then average weighted by force.
     const auto strongest = *std::max_element(z.pairs.begin(), z.pairs.end(), [&](Eigen::Index a, Eigen::Index b) {
-      return forces(active[static_cast<std::size_t>(a)]) < forces(active[static_cast<std::size_t>(b)]);
+      return force[static_cast<std::size_t>(a)] < force[static_cast<std::size_t>(b)];
     });
     const Eigen::Vector3d reference = geometry[static_cast<std::size_t>(strongest)].normal;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero(), where = Eigen::Vector3d::Zero();
     for (Eigen::Index& i : z.pairs) {
-      const double f = forces(active[static_cast<std::size_t>(i)]);
+      const double f = force[static_cast<std::size_t>(i)];
       const Eigen::Vector3d nrm = geometry[static_cast<std::size_t>(i)].normal;
       sum += f * (nrm.dot(reference) >= 0.0 ? nrm : Eigen::Vector3d(-nrm));
       where += f * point[static_cast<std::size_t>(i)];
