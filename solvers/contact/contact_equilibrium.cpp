@@ -175,20 +175,24 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
     }
     // Verify against every pair near the solution (edge-edge pairs and all triangles
     // included, whatever the selection of constrained pairs), not only the constrained ones.
-    const ContactCandidates near = near_contact_pairs(proxy, x, allowed, options.exclusion_radius);
-    const ContactCandidates reached = near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection);
-    out.min_distance = std::min(smallest_distance(proxy, pairs, x), smallest_distance(proxy, near, x));
-    if (near.empty() && out.min_distance >= allowed) {
+    const ContactCandidates violators = near_contact_pairs(proxy, x, allowed, options.exclusion_radius);
+    out.min_distance = std::min(smallest_distance(proxy, pairs, x), smallest_distance(proxy, violators, x));
+    if (violators.empty() && out.min_distance >= allowed) {
       out.converged = true;
       out.message = out.used_contact ? "converged with contact" : "converged without contact";
       return out;
     }
-    // Some pair came closer than allowed without being constrained: add it, and the selected
-    // pairs now within reach, and solve again from the feasible start. If nothing new can be
-    // added, another round would repeat the same solve.
-    const ContactCandidates next = merge(pairs, merge(near, reached));
-    if (next.vertex_triangle.rows() == pairs.vertex_triangle.rows() &&
-        next.edge_edge.rows() == pairs.edge_edge.rows()) {
+    // Some pair came closer than allowed without being constrained: add the selected pairs
+    // now within reach (cheap: nearest triangles) and, only if that adds nothing, the
+    // violating pairs themselves; then solve again from the feasible start. If nothing new
+    // can be added, another round would repeat the same solve.
+    const auto same_size = [](const ContactCandidates& a, const ContactCandidates& b) {
+      return a.vertex_triangle.rows() == b.vertex_triangle.rows() && a.edge_edge.rows() == b.edge_edge.rows();
+    };
+    ContactCandidates next =
+        merge(pairs, near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection));
+    if (same_size(next, pairs)) next = merge(next, violators);
+    if (same_size(next, pairs)) {
       out.message = "a constrained pair ends closer than allowed (min distance " +
                     std::to_string(out.min_distance) + " m); tighten the minimiser's tolerances";
       return out;
