@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The trace_disc runs behind docs/validation.md and the accuracy-cost table of
 # docs/performance.md, then contact_profile on each, into DIR (default validation-runs/).
-# Two runs at a time, one thread each (about 2 hours on 2 cores). Runs already finished
+# Two runs at a time, one thread each (about 4 hours on 2 cores). Runs already finished
 # (DIR/NAME/cost.json present) are skipped, so the script can be restarted.
 #   usage: scripts/validation_runs.sh [DIR]      then: scripts/plot_validation.py DIR
 set -euo pipefail
@@ -41,6 +41,7 @@ h01_p3_r24 p3.json --h 0.01 --rings 24 --phi-max 7.2 --through-contact 1
 h01_p3_r36 p3.json --h 0.01 --rings 36 --phi-max 7.2 --through-contact 1
 h005_p3_r24 p3.json --h 0.005 --rings 24 --phi-max 7.2 --through-contact 1
 h005_p3_r36 p3.json --h 0.005 --rings 36 --phi-max 7.2 --through-contact 1
+h005_p3_r48 p3.json --h 0.005 --rings 48 --phi-max 6.85 --through-contact 1
 h002_p3_r24 p3.json --h 0.002 --rings 24 --phi-max 7.2 --through-contact 1
 h002_p3_r36 p3.json --h 0.002 --rings 36 --phi-max 7.2 --through-contact 1
 mode3_h02_r24 p3.json --h 0.02 --rings 24 --mode 3 --phi-max 7.2
