@@ -7,6 +7,7 @@
 // point is appended to branch.csv and saved under states/ as soon as it converges; --resume
 // restarts from any saved point, forward or --backward.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -363,9 +364,15 @@ int run(int argc, char** argv) {
   } else {
     // The flat branch up to the branch point of the n-fold mode (the flat branch is stable up
     // to the first one; the n-th pair of modes goes unstable at the (n-1)-th).
+    // The flat disc buckles at phi_c = 10.6 (h/R)^2 (n = 2) and 21.1 (h/R)^2 (n = 3): steps and
+    // the location tolerance scale with (h/R)^2 so that thin sheets (h = 0.001: phi_c = 1e-5)
+    // do not pass several branch points in one step.
+    const double h_over_r2 = (h / scene.geometry.radius) * (h / scene.geometry.radius);
     ArclengthOptions flat_options = options;
-    flat_options.initial_step = 1e-3;
-    flat_options.max_step = 0.01;
+    flat_options.initial_step = std::min(1e-3, 0.25 * h_over_r2);
+    flat_options.max_step = std::min(0.01, 2.5 * h_over_r2);
+    flat_options.min_step = std::min(flat_options.min_step, 1e-3 * flat_options.initial_step);
+    flat_options.special_point_tolerance = std::min(options.special_point_tolerance, 1e-3 * h_over_r2);
     flat_options.max_special_points = scene.continuation.mode - 1;
     std::vector<SpecialPoint> flat_points;
     BranchTrace flat = trace_branch(
