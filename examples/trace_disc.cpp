@@ -397,7 +397,10 @@ int run(int argc, char** argv) {
     const Eigen::VectorXd mode = critical_mode(family, chosen->x, chosen->parameter, hint, pinned, options);
     std::printf("# switching onto the %d-fold cone at phi_e = %.7f\n", scene.continuation.mode,
                 chosen->parameter);
-    trace = trace_branch_along(family, chosen->x + 0.005 * mode, chosen->parameter, mode, 0.0,
+    // Step off the flat branch along the mode; the cone's amplitude near threshold shrinks with
+    // h, so very thin sheets need a smaller step (h < 0.005 R) for the corrector to converge.
+    const double switch_step = 0.005 * std::min(1.0, h / (0.005 * scene.geometry.radius));
+    trace = trace_branch_along(family, chosen->x + switch_step * mode, chosen->parameter, mode, 0.0,
                                pinned, options, on_sample, on_special, events, on_event);
   }
   snapshot(trace.last, "last.vtu");
