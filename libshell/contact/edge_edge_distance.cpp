@@ -44,38 +44,6 @@ void require_valid_edges(const Vector3d& p0, const Vector3d& p1, const Vector3d&
   }
 }
 
-struct SegmentHit {
-  double distance_squared;
-  double t;  ///< exactly 0 or 1 when clamped to an endpoint
-};
-
-SegmentHit closest_on_segment(const Vector3d& x, const Vector3d& x0, const Vector3d& x1) {
-  const Vector3d e = x1 - x0;
-  const Vector3d r = x - x0;
-  const double t = r.dot(e) / e.squaredNorm();
-  if (t <= 0.0) return {r.squaredNorm(), 0.0};
-  if (t >= 1.0) return {(x - x1).squaredNorm(), 1.0};
-  return {(r - t * e).squaredNorm(), t};
-}
-
-ValueGradientHessian<6> point_point_derivatives(const Vector3d& x, const Vector3d& y) {
-  ValueGradientHessian<6> f;
-  const Vector3d r = x - y;
-  f.value = r.squaredNorm();
-  f.gradient << 2.0 * r, -2.0 * r;
-  const Matrix3d I = 2.0 * Matrix3d::Identity();
-  f.hessian << I, -I, -I, I;
-  return f;
-}
-
-/// Selection map: local point k is the point indices[k] of (p0, p1, q0, q1).
-template <int K>
-Eigen::Matrix<double, K, 4> selection(const std::array<int, K>& indices) {
-  Eigen::Matrix<double, K, 4> map = Eigen::Matrix<double, K, 4>::Zero();
-  for (int k = 0; k < K; ++k) map(k, indices[k]) = 1.0;
-  return map;
-}
-
 ValueGradientHessian<12> region_derivatives(const Vector3d& p0, const Vector3d& p1,
                                             const Vector3d& q0, const Vector3d& q1,
                                             EdgeEdgeRegion region, const char* function) {
@@ -98,24 +66,24 @@ ValueGradientHessian<12> region_derivatives(const Vector3d& p0, const Vector3d& 
     }
     case R::P0EdgeQ:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(p0, q0, q1),
-                                       selection<3>({0, 2, 3}));
+                                       select_of_four<3>({0, 2, 3}));
     case R::P1EdgeQ:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(p1, q0, q1),
-                                       selection<3>({1, 2, 3}));
+                                       select_of_four<3>({1, 2, 3}));
     case R::Q0EdgeP:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(q0, p0, p1),
-                                       selection<3>({2, 0, 1}));
+                                       select_of_four<3>({2, 0, 1}));
     case R::Q1EdgeP:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(q1, p0, p1),
-                                       selection<3>({3, 0, 1}));
+                                       select_of_four<3>({3, 0, 1}));
     case R::P0Q0:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p0, q0), selection<2>({0, 2}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p0, q0), select_of_four<2>({0, 2}));
     case R::P0Q1:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p0, q1), selection<2>({0, 3}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p0, q1), select_of_four<2>({0, 3}));
     case R::P1Q0:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p1, q0), selection<2>({1, 2}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p1, q0), select_of_four<2>({1, 2}));
     case R::P1Q1:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p1, q1), selection<2>({1, 3}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p1, q1), select_of_four<2>({1, 3}));
   }
   throw std::invalid_argument(std::string(function) + ": region value " +
                               std::to_string(static_cast<int>(region)) +
@@ -226,7 +194,7 @@ EdgeEdgeResult edge_edge_closest(const Eigen::Ref<const Vector3d>& p0_in,
                                    {&q1, &p0, &p1, false, 1.0, R::Q1EdgeP, R::P0Q1, R::P1Q1}};
   result.distance_squared = std::numeric_limits<double>::infinity();
   for (const Candidate& candidate : candidates) {
-    const SegmentHit hit = closest_on_segment(*candidate.point, *candidate.x0, *candidate.x1);
+    const SegmentClosestPoint hit = closest_point_on_segment(*candidate.point, *candidate.x0, *candidate.x1);
     if (!(hit.distance_squared < result.distance_squared)) continue;
     result.distance_squared = hit.distance_squared;
     result.region =

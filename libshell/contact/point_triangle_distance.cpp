@@ -56,42 +56,6 @@ void require_valid_triangle(const Vector3d& p, const Vector3d& a, const Vector3d
   }
 }
 
-/// Closest point of segment x0 + t (x1 - x0), t in [0, 1], to p. Requires x0 != x1.
-struct SegmentHit {
-  double distance_squared;
-  double t;  ///< 0 and 1 exactly when clamped to an endpoint
-};
-
-SegmentHit closest_on_segment(const Vector3d& p, const Vector3d& x0, const Vector3d& x1) {
-  const Vector3d e = x1 - x0;
-  const Vector3d r = p - x0;
-  const double t = r.dot(e) / e.squaredNorm();
-  if (t <= 0.0) return {r.squaredNorm(), 0.0};
-  if (t >= 1.0) return {(p - x1).squaredNorm(), 1.0};
-  // The perpendicular part directly, not |r|^2 - (r.e)^2/|e|^2, which cancels when p is close
-  // to the line but far along it.
-  return {(r - t * e).squaredNorm(), t};
-}
-
-/// Point-point: |p - v|^2 w.r.t. (p, v).
-ValueGradientHessian<6> point_point_derivatives(const Vector3d& p, const Vector3d& v) {
-  ValueGradientHessian<6> f;
-  const Vector3d r = p - v;
-  f.value = r.squaredNorm();
-  f.gradient << 2.0 * r, -2.0 * r;
-  const Matrix3d I = 2.0 * Matrix3d::Identity();
-  f.hessian << I, -I, -I, I;
-  return f;
-}
-
-/// Selection map: local point k is the point indices[k] of (p, a, b, c).
-template <int K>
-Eigen::Matrix<double, K, 4> selection(const std::array<int, K>& indices) {
-  Eigen::Matrix<double, K, 4> map = Eigen::Matrix<double, K, 4>::Zero();
-  for (int k = 0; k < K; ++k) map(k, indices[k]) = 1.0;
-  return map;
-}
-
 ValueGradientHessian<12> region_derivatives(const Vector3d& p, const Vector3d& a, const Vector3d& b,
                                             const Vector3d& c, PointTriangleRegion region) {
   using R = PointTriangleRegion;
@@ -107,19 +71,19 @@ ValueGradientHessian<12> region_derivatives(const Vector3d& p, const Vector3d& a
     }
     case R::EdgeAB:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(p, a, b),
-                                       selection<3>({0, 1, 2}));
+                                       select_of_four<3>({0, 1, 2}));
     case R::EdgeBC:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(p, b, c),
-                                       selection<3>({0, 2, 3}));
+                                       select_of_four<3>({0, 2, 3}));
     case R::EdgeCA:
       return pull_back_blockwise<3, 4>(point_line_distance_squared_derivatives(p, c, a),
-                                       selection<3>({0, 3, 1}));
+                                       select_of_four<3>({0, 3, 1}));
     case R::VertexA:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p, a), selection<2>({0, 1}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p, a), select_of_four<2>({0, 1}));
     case R::VertexB:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p, b), selection<2>({0, 2}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p, b), select_of_four<2>({0, 2}));
     case R::VertexC:
-      return pull_back_blockwise<2, 4>(point_point_derivatives(p, c), selection<2>({0, 3}));
+      return pull_back_blockwise<2, 4>(point_point_distance_squared_derivatives(p, c), select_of_four<2>({0, 3}));
   }
   throw std::invalid_argument("point_triangle: region value " +
                               std::to_string(static_cast<int>(region)) +
@@ -187,7 +151,7 @@ PointTriangleResult point_triangle_closest(const Eigen::Ref<const Vector3d>& p_i
                          {&c, &a, 2, 0, R::EdgeCA, R::VertexC, R::VertexA}};
   result.distance_squared = std::numeric_limits<double>::infinity();
   for (const Edge& edge : edges) {
-    const SegmentHit hit = closest_on_segment(p, *edge.x0, *edge.x1);
+    const SegmentClosestPoint hit = closest_point_on_segment(p, *edge.x0, *edge.x1);
     if (!(hit.distance_squared < result.distance_squared)) continue;
     result.distance_squared = hit.distance_squared;
     result.region = hit.t == 0.0 ? edge.start : (hit.t == 1.0 ? edge.end : edge.interior);
@@ -345,6 +309,28 @@ ValueGradientHessian<9> plane_distance_squared_derivatives(const Eigen::Ref<cons
   f.gradient = 2.0 * k * grad_h - k * k * grad_m;
   const Vector9d s = grad_h - k * grad_m;
   f.hessian = 2.0 * s * s.transpose() / m + 2.0 * k * hess_h - k * k * hess_m;
+  return f;
+}
+
+SegmentClosestPoint closest_point_on_segment(const Eigen::Ref<const Eigen::Vector3d>& x,
+                                             const Eigen::Ref<const Eigen::Vector3d>& x0,
+                                             const Eigen::Ref<const Eigen::Vector3d>& x1) {
+  const Vector3d e = x1 - x0;
+  const Vector3d r = x - x0;
+  const double t = r.dot(e) / e.squaredNorm();
+  if (t <= 0.0) return {r.squaredNorm(), 0.0};
+  if (t >= 1.0) return {(x - x1).squaredNorm(), 1.0};
+  return {(r - t * e).squaredNorm(), t};
+}
+
+ValueGradientHessian<6> point_point_distance_squared_derivatives(
+    const Eigen::Ref<const Eigen::Vector3d>& x, const Eigen::Ref<const Eigen::Vector3d>& y) {
+  ValueGradientHessian<6> f;
+  const Vector3d r = x - y;
+  f.value = r.squaredNorm();
+  f.gradient << 2.0 * r, -2.0 * r;
+  const Matrix3d I = 2.0 * Matrix3d::Identity();
+  f.hessian << I, -I, -I, I;
   return f;
 }
 

@@ -25,6 +25,7 @@
 /// relative rounding error ~ 1e-16 L^2 / |n| from forming n (inherent to double precision).
 
 #include <Eigen/Core>
+#include <array>
 
 namespace growshell {
 
@@ -132,6 +133,32 @@ ValueGradientHessian<3 * M> pull_back_blockwise(const ValueGradientHessian<3 * K
   g.hessian = jacobian.transpose() * f.hessian * jacobian;
   return g;
 }
+
+/// Selection map for pull_back_blockwise: local point k is point indices[k] of the four points
+/// of a primitive pair ((p, a, b, c) or (p0, p1, q0, q1)).
+template <int K>
+Eigen::Matrix<double, K, 4> select_of_four(const std::array<int, K>& indices) {
+  Eigen::Matrix<double, K, 4> map = Eigen::Matrix<double, K, 4>::Zero();
+  for (int k = 0; k < K; ++k) map(k, indices[k]) = 1.0;
+  return map;
+}
+
+/// Closest point x0 + t (x1 - x0), t in [0, 1], of a segment to x.
+struct SegmentClosestPoint {
+  double distance_squared;  ///< m^2
+  double t;                 ///< exactly 0 or 1 when clamped to an endpoint
+};
+
+/// The closest point of the segment [x0, x1] to x. Requires x0 != x1 (not checked: callers
+/// validate their primitives first). The perpendicular part is formed directly, not as
+/// |r|^2 - (r.e)^2/|e|^2, which cancels when x is close to the line but far along it.
+SegmentClosestPoint closest_point_on_segment(const Eigen::Ref<const Eigen::Vector3d>& x,
+                                             const Eigen::Ref<const Eigen::Vector3d>& x0,
+                                             const Eigen::Ref<const Eigen::Vector3d>& x1);
+
+/// |x - y|^2 (m^2) with gradient and Hessian w.r.t. (x, y).
+ValueGradientHessian<6> point_point_distance_squared_derivatives(
+    const Eigen::Ref<const Eigen::Vector3d>& x, const Eigen::Ref<const Eigen::Vector3d>& y);
 
 /// Squared distance (m^2) from p to the infinite line through x0 and x1, with derivatives
 /// w.r.t. (p, x0, x1). Throws std::invalid_argument if x0 == x1 or a coordinate is not finite.
