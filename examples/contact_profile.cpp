@@ -23,6 +23,7 @@
 #include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
+#include "libshell/analysis/core_radius.hpp"
 #include "libshell/analysis/self_distance.hpp"
 #include "libshell/analysis/self_intersection.hpp"
 #include "libshell/io/scene.hpp"
@@ -62,14 +63,6 @@ struct Row {
   bool crosses = false;
   double crossing_radius_a = 0.0, crossing_radius_b = 0.0;  // reference radii of the pair
 };
-
-/// Reference distance of element e's centroid from the growth centre.
-double element_radius(const ShellModel& model, Eigen::Index e) {
-  const Eigen::VectorXd& X = model.reference_positions();
-  const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
-  const Eigen::Vector3d c = (X.segment<3>(3 * f[0]) + X.segment<3>(3 * f[1]) + X.segment<3>(3 * f[2])) / 3.0;
-  return (c - model.settings().growth.center).head<2>().norm();
-}
 
 int run(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') {
@@ -127,8 +120,8 @@ int run(int argc, char** argv) {
     const SelfIntersection crossing = find_self_intersection(model, s.x, so);
     row.crosses = crossing.intersects;
     if (row.crosses) {
-      row.crossing_radius_a = element_radius(model, crossing.element_a);
-      row.crossing_radius_b = element_radius(model, crossing.element_b);
+      row.crossing_radius_a = element_reference_radius(model, crossing.element_a, model.settings().growth.center);
+      row.crossing_radius_b = element_reference_radius(model, crossing.element_b, model.settings().growth.center);
     }
     csv << row.phi;
     for (std::size_t k = 0; k < bands.size(); ++k) csv << ',' << row.gap[k] << ',' << row.radius[k];

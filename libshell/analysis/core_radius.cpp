@@ -8,6 +8,14 @@
 
 namespace growshell {
 
+double element_reference_radius(const ShellModel& model, Eigen::Index e, const Eigen::Vector3d& center) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  const std::array<int, 3>& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
+  const Eigen::Vector3d centroid =
+      (X.segment<3>(3 * f[0]) + X.segment<3>(3 * f[1]) + X.segment<3>(3 * f[2])) / 3.0;
+  return (centroid - center).head<2>().norm();
+}
+
 CoreRadius stretching_core_radius(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                                   double fraction, const Eigen::Vector3d& center) {
   if (!(fraction > 0.0 && fraction < 1.0))
@@ -16,15 +24,11 @@ CoreRadius stretching_core_radius(const ShellModel& model, const Eigen::Ref<cons
   if (x.size() != model.dimension())
     throw std::invalid_argument("stretching_core_radius: x has " + std::to_string(x.size()) +
                                 " entries, expected " + std::to_string(model.dimension()));
-  const Eigen::VectorXd& X = model.reference_positions();
   std::vector<std::pair<double, double>> radius_energy(static_cast<std::size_t>(model.num_elements()));
   double total = 0.0;
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const std::array<int, 3>& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
-    const Eigen::Vector3d centroid =
-        (X.segment<3>(3 * f[0]) + X.segment<3>(3 * f[1]) + X.segment<3>(3 * f[2])) / 3.0;
     const double energy = model.element_breakdown(x, e).stretching;
-    radius_energy[static_cast<std::size_t>(e)] = {(centroid - center).head<2>().norm(), energy};
+    radius_energy[static_cast<std::size_t>(e)] = {element_reference_radius(model, e, center), energy};
     total += energy;
   }
   if (!(total > 0.0))

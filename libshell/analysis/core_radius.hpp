@@ -20,6 +20,11 @@ struct CoreRadius {
   double stretching_energy = 0.0;
 };
 
+/// Distance (metres, in the reference plane: x and y only) of element e's reference centroid
+/// (the mean of its three corner control points) from `center`. 0 <= e < num_elements(), not
+/// range-checked.
+double element_reference_radius(const ShellModel& model, Eigen::Index e, const Eigen::Vector3d& center);
+
 /// R_c of the state x (control points, vertex-major like ShellModel, metres) at the model's
 /// current excess angle: the radius about `center` (reference plane; only its x and y count)
 /// that encloses `fraction` of the stretching energy, element by element. Definition chosen
