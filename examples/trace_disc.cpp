@@ -50,6 +50,8 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --core-radius RC    ignore the sheet within RC of the centre when measuring the gap
                       (default 0; see docs/validation.md)
   --tolerance T       corrector force tolerance relative to Y h^3 / R (default 1e-6)
+  --max-tangent-angle A  largest angle between successive tangents (rad, default 0.3);
+                      raise it where a nearly broken symmetry bends the branch sharply
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
   --eigenmodes K      at each special point write the K lowest eigenmodes (default 2; 0 = off)
   --out DIR           output directory (default: the scene's output.directory)
@@ -158,6 +160,7 @@ int run(int argc, char** argv) {
   const bool through_contact = cl.integer("--through-contact", 0) != 0;
   const std::string resume = cl.text("--resume", "");
   const double tolerance = cl.number("--tolerance", 1e-6);
+  const double max_tangent_angle = cl.number("--max-tangent-angle", 0.3);
   const double core_radius = cl.number("--core-radius", 0.0);
   const int eigenmodes = cl.integer("--eigenmodes", 2);
   cl.reject_unknown();
@@ -190,6 +193,9 @@ int run(int argc, char** argv) {
   options.min_step = scene.continuation.min_step;
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
   options.gradient_tolerance = tolerance * model.natural_force_scale();
+  if (!(max_tangent_angle > 0.0 && max_tangent_angle < std::acos(-1.0)))
+    throw std::invalid_argument("--max-tangent-angle must be in (0, pi)");
+  options.max_tangent_angle = max_tangent_angle;
   options.parameter_min = scene.continuation.phi_min;
   options.parameter_max = scene.continuation.phi_max;
 

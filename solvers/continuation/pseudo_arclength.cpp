@@ -256,8 +256,9 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
     const Eigen::VectorXd xp = p.x + step * p.tangent_state;
     const double lp = p.parameter + step * p.tangent_parameter;
     const bool ok = solver.correct(xp, lp, p.tangent_state, p.tangent_parameter, next) &&
-                    solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
-                               p.tangent_parameter) >= cos_max;
+                    (step <= options.angle_test_max_step ||
+                     solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
+                                p.tangent_parameter) >= cos_max);
     if (!ok) {
       ++out.failed_steps;
       step /= 2;

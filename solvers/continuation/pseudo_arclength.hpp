@@ -21,6 +21,12 @@ struct ArclengthOptions {
   int target_iterations = 4;   ///< corrector iterations the step control aims at
   int max_corrector_iterations = 15;
   double max_tangent_angle = 0.3;  ///< radians between successive tangents
+  /// Steps no longer than this skip the tangent-angle test (a converged corrector suffices).
+  /// Where the tangent jumps by a finite angle over an arbitrarily short step (a Hessian that
+  /// is only piecewise smooth, e.g. a contact penalty entering, or a nearly singular augmented
+  /// system next to an imperfect branch point) the test would otherwise reject every step
+  /// down to min_step. 0 (default) keeps the test for all steps.
+  double angle_test_max_step = 0.0;
   double gradient_tolerance = 1e-8;  ///< absolute, inf-norm of the free gradient
   /// Weight of the state in the arclength norm: |du|^2 = state_weight |dx|^2 / n + dlambda^2.
   double state_weight = 1.0;
