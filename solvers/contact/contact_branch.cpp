@@ -1,0 +1,280 @@
+#include "solvers/contact/contact_branch.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "libshell/contact/contact_penalty.hpp"
+#include "solvers/contact/penalized_growth_family.hpp"
+
+namespace growshell {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Thrown from the segment's sample callback when a pair outside the segment's set came too
+/// close: the segment ends there and is retried from the last accepted sample.
+struct PairSetViolation {};
+
+void accumulate(TraceCost& sum, const TraceCost& part) {
+  sum.linearizations += part.linearizations;
+  sum.factorizations += part.factorizations;
+  sum.solves += part.solves;
+  sum.assembly_seconds += part.assembly_seconds;
+  sum.factorization_seconds += part.factorization_seconds;
+  sum.solve_seconds += part.solve_seconds;
+  sum.event_seconds += part.event_seconds;
+  sum.callback_seconds += part.callback_seconds;
+  sum.total_seconds += part.total_seconds;
+}
+
+void validate(const ContactBranchOptions& o) {
+  const auto positive = [](double v, const char* name) {
+    if (!(std::isfinite(v) && v > 0.0))
+      throw std::invalid_argument(std::string("ContactBranchOptions::") + name +
+                                  " must be finite and > 0");
+  };
+  positive(o.contact_distance, "contact_distance");
+  positive(o.exclusion_radius, "exclusion_radius");
+  positive(o.candidate_margin, "candidate_margin");
+  positive(o.stiffness, "stiffness");
+  if (!(std::isfinite(o.violation_tolerance) && o.violation_tolerance >= 0.0 &&
+        o.violation_tolerance < o.contact_distance))
+    throw std::invalid_argument(
+        "ContactBranchOptions::violation_tolerance must be in [0, contact_distance)");
+  if (o.steps_per_segment < 1)
+    throw std::invalid_argument("ContactBranchOptions::steps_per_segment must be >= 1");
+}
+
+/// The sample's description with the penalty of its segment.
+ContactBranchSample describe(ShellModel& model, ContactPenalty* penalty, const BranchSample& sample,
+                             const ContactCandidates& pairs, const ContactProxy& proxy,
+                             const ContactBranchOptions& options) {
+  ContactBranchSample out;
+  out.sample = sample;
+  out.pairs = pairs;
+  model.set_excess_angle(sample.parameter);
+  const ShellEnergyBreakdown e = model.energy_breakdown(sample.x);
+  out.stretching_energy = e.stretching;
+  out.bending_energy = e.bending;
+  out.current_area = e.current_area;
+  out.normalized_bending = e.normalized_bending();
+  // dE/dphi at fixed state by central differences: the truncation error is delta^2 E''' / 6
+  // ~ 1e-9 E and the round-off eps E / delta ~ 1e-12 E for delta = 1e-4 (P does not depend on
+  // phi_e).
+  const double delta = 1e-4;
+  model.set_excess_angle(sample.parameter + delta);
+  const ShellEnergyBreakdown up = model.energy_breakdown(sample.x);
+  model.set_excess_angle(sample.parameter - delta);
+  const ShellEnergyBreakdown down = model.energy_breakdown(sample.x);
+  model.set_excess_angle(sample.parameter);
+  out.energy_slope =
+      ((up.stretching + up.bending) - (down.stretching + down.bending)) / (2.0 * delta);
+  out.min_distance = std::numeric_limits<double>::infinity();
+  out.forces = Eigen::VectorXd::Zero(0);
+  if (!pairs.empty()) {
+    std::optional<ContactPenalty> own;
+    if (penalty == nullptr)
+      penalty = &own.emplace(proxy, pairs, options.contact_distance, options.stiffness,
+                             model.dimension(), options.gap);
+    out.penalty_energy = penalty->evaluate(sample.x, nullptr, nullptr);
+    const ContactGapConstraints& gaps = penalty->constraints();
+    out.forces.resize(gaps.count());
+    for (Eigen::Index k = 0; k < gaps.count(); ++k) {
+      const ContactPairGeometry g = gaps.pair_geometry(sample.x, k);
+      out.min_distance = std::min(out.min_distance, g.distance);
+      // The penalty's force on the pair: k m (h - d)_+ (m: the edge-edge mollifier, else 1).
+      out.forces[k] = options.stiffness * g.mollifier * std::max(0.0, -g.gap);
+      if (out.forces[k] > 0.0) ++out.active_pairs;
+    }
+  }
+  return out;
+}
+
+/// True if every pair of `close` is covered by `pairs`: a vertex-triangle pair by any pair of
+/// the same proxy vertex (the nearest triangle is re-chosen at every rebuild), an edge-edge pair
+/// by itself.
+bool covered(const ContactCandidates& close, const ContactCandidates& pairs) {
+  std::set<int> vertices;
+  for (Eigen::Index i = 0; i < pairs.vertex_triangle.rows(); ++i)
+    vertices.insert(pairs.vertex_triangle(i, 0));
+  for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i)
+    if (!vertices.count(close.vertex_triangle(i, 0))) return false;
+  std::set<std::pair<int, int>> edges;
+  for (Eigen::Index i = 0; i < pairs.edge_edge.rows(); ++i)
+    edges.insert({pairs.edge_edge(i, 0), pairs.edge_edge(i, 1)});
+  for (Eigen::Index i = 0; i < close.edge_edge.rows(); ++i)
+    if (!edges.count({close.edge_edge(i, 0), close.edge_edge(i, 1)})) return false;
+  return true;
+}
+
+}  // namespace
+
+ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,
+                                            const BranchSample& sample,
+                                            const ContactCandidates& pairs,
+                                            const ContactBranchOptions& options) {
+  validate(options);
+  return describe(model, nullptr, sample, pairs, proxy, options);
+}
+
+ContactBranchTrace trace_contact_branch(
+    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    double phi0, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+    double direction_parameter, const std::vector<Eigen::Index>& fixed_dofs,
+    const ContactBranchOptions& options,
+    const std::function<void(const ContactBranchSample&)>& on_sample,
+    const std::function<void(const SpecialPoint&)>& on_special,
+    const std::vector<BranchEvent>& events,
+    const std::function<void(const LocatedEvent&)>& on_event) {
+  validate(options);
+  if (x0.size() != model.dimension() || direction_state.size() != model.dimension())
+    throw std::invalid_argument("trace_contact_branch: x0 and direction_state need " +
+                                std::to_string(model.dimension()) + " entries");
+  ContactBranchTrace out;
+  const ArclengthOptions& arc = options.arclength;
+  Eigen::VectorXd start_x = x0, start_direction = direction_state;
+  double start_phi = phi0, start_direction_parameter = direction_parameter;
+  double step = arc.initial_step;
+  double margin = options.candidate_margin;
+  bool have_sample = false;  // out.last holds a converged sample
+  int retries = 0;
+  while (out.steps < arc.max_steps) {
+    // The pair set of this segment: pairs near its start.
+    auto t0 = Clock::now();
+    const ContactCandidates pairs = near_contact_pairs(
+        proxy, start_x, options.contact_distance + margin, options.exclusion_radius, options.selection);
+    out.cost.pair_search_seconds += seconds_since(t0);
+    ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
+                           model.dimension(), options.gap);
+    PenalizedGrowthFamily family(model, penalty);
+    ArclengthOptions segment_options = arc;
+    segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
+    segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
+    const int segment = out.cost.segments++;
+
+    const bool emit_start = !have_sample;
+    int samples_in_segment = 0;
+    BranchSample last_good;
+    bool have_last_good = false;
+    double previous_arclength = 0.0, last_step = step;
+    const auto on_segment_sample = [&](const BranchSample& s) {
+      auto tc = Clock::now();
+      const ContactCandidates close =
+          near_contact_pairs(proxy, s.x, options.contact_distance - options.violation_tolerance,
+                             options.exclusion_radius, options.selection);
+      out.cost.pair_search_seconds += seconds_since(tc);
+      if (!covered(close, pairs)) throw PairSetViolation{};
+      const bool is_start = samples_in_segment++ == 0;
+      if (!is_start) {
+        last_step = s.arclength - previous_arclength;
+        ++out.steps;
+      }
+      previous_arclength = s.arclength;
+      last_good = s;
+      have_last_good = true;
+      if (is_start && !emit_start) {
+        // The previous segment's last sample, corrected on the rebuilt pair set: a change of
+        // the negative count here is a special point at the segment boundary.
+        if (s.negative_eigenvalues != out.last.sample.negative_eigenvalues) {
+          SpecialPoint sp;
+          sp.kind = (s.tangent_parameter > 0) == (out.last.sample.tangent_parameter > 0)
+                        ? SpecialPoint::Kind::BranchPoint
+                        : SpecialPoint::Kind::Fold;
+          sp.parameter = s.parameter;
+          sp.x = s.x;
+          sp.negative_before = out.last.sample.negative_eigenvalues;
+          sp.negative_after = s.negative_eigenvalues;
+          sp.multiplicity = std::abs(sp.negative_after - sp.negative_before);
+          sp.bracket_width = std::abs(s.parameter - out.last.sample.parameter);
+          out.special_points.push_back(sp);
+          if (on_special) on_special(sp);
+        }
+        out.last.sample = s;
+        return;
+      }
+      auto td = Clock::now();
+      ContactBranchSample described = describe(model, &penalty, s, pairs, proxy, options);
+      described.segment = segment;
+      out.cost.sample_seconds += seconds_since(td);
+      out.last = std::move(described);
+      have_sample = true;
+      if (on_sample) on_sample(out.last);
+    };
+
+    BranchTrace trace;
+    bool violated = false;
+    t0 = Clock::now();
+    try {
+      trace = trace_branch_along(family, start_x, start_phi, start_direction,
+                                 start_direction_parameter, fixed_dofs, segment_options,
+                                 on_segment_sample, on_special, events, on_event);
+    } catch (const PairSetViolation&) {
+      violated = true;
+    }
+    if (violated) {
+      // The cost of the abandoned segment is known only in wall time.
+      out.cost.continuation.total_seconds += seconds_since(t0);
+      ++out.cost.rebuilds_after_violation;
+      if (++retries > 6)
+        throw std::runtime_error("trace_contact_branch: pairs keep coming closer than allowed "
+                                 "after 6 rebuilds at phi_e = " + std::to_string(start_phi));
+      if (have_last_good && samples_in_segment > 1) {
+        // Restart from the last accepted sample with a set rebuilt there.
+        start_x = last_good.x;
+        start_phi = last_good.parameter;
+        start_direction = last_good.tangent_state;
+        start_direction_parameter = last_good.tangent_parameter;
+        step = last_step;
+      } else {
+        // Even the first step moved a pair further than the margin: widen it, shorten steps.
+        margin *= 2.0;
+        step /= 2.0;
+      }
+      continue;
+    }
+    retries = 0;
+    margin = options.candidate_margin;
+    accumulate(out.cost.continuation, trace.cost);
+    for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
+    for (const LocatedEvent& e : trace.events) out.events.push_back(e);
+    out.failed_steps += trace.failed_steps;
+    if (samples_in_segment == 0) {
+      out.message = "segment start at phi_e = " + std::to_string(start_phi) +
+                    " did not converge: " + trace.message;
+      break;
+    }
+    if (trace.reached_bound && trace.message != "reached max_steps") {
+      out.reached_bound = true;
+      out.message = trace.message;
+      break;
+    }
+    if (trace.message != "reached max_steps") {
+      out.message = trace.message;
+      break;
+    }
+    start_x = trace.last.x;
+    start_phi = trace.last.parameter;
+    start_direction = trace.last.tangent_state;
+    start_direction_parameter = trace.last.tangent_parameter;
+    step = last_step;
+  }
+  if (out.message.empty()) {
+    out.message = "reached max_steps";
+    out.reached_bound = true;
+  }
+  model.set_excess_angle(out.last.sample.parameter);
+  return out;
+}
+
+}  // namespace growshell

@@ -1,0 +1,118 @@
+#pragma once
+/// \file
+/// Pseudo-arclength continuation of a growing shell through self-contact. Contact is the
+/// quadratic penalty of contact_penalty.hpp on the pairs near the current state; the branch
+/// is followed in segments of a few steps, each with a fixed pair set (so that the Hessian
+/// pattern, and the LDL^T analysis, stay fixed), and the pair set is rebuilt between segments
+/// and whenever a pair outside the set comes closer than allowed. Because the corrector is
+/// Newton on the augmented system, the branch is followed also where it is unstable.
+///
+/// Stability under contact. The penalised Hessian is
+///   d2(E + P) = d2E - sum_k f_k d2 d_k + k sum_k grad d_k grad d_k^T,   f_k = k (h - d_k)_+,
+/// i.e. the Hessian of the Lagrangian with multipliers f_k (the penalty forces) plus k J^T J
+/// over the active pairs. By Debreu's lemma its negative count equals that of the Lagrangian
+/// Hessian reduced to the tangent space of the active constraints once k exceeds a finite
+/// bound, so the samples' negative_eigenvalues is the stability index under contact
+/// (reduced_hessian_inertia computes the reduced count exactly, for checking).
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/contact/contact_candidates.hpp"
+#include "libshell/contact/contact_gap_constraints.hpp"
+#include "libshell/contact/contact_proxy.hpp"
+#include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+
+namespace growshell {
+
+/// Settings of trace_contact_branch. Lengths in metres.
+struct ContactBranchOptions {
+  /// Step control and tolerances of each segment (parameter bounds and max_steps apply to the
+  /// whole trace).
+  ArclengthOptions arclength;
+  double contact_distance = 0.0;  ///< mid-surface distance at which the sheets touch, > 0
+  double exclusion_radius = 0.0;  ///< neighbours on the sheet within this are never contact, > 0
+  /// Pairs closer than contact_distance + candidate_margin at the start of a segment enter its
+  /// penalty (> 0). It bounds how far two parts may approach unseen during a segment.
+  double candidate_margin = 0.0;
+  double stiffness = 0.0;  ///< penalty stiffness k (N/m), > 0
+  /// Which near pairs enter (default as the Ipopt solve: vertex-triangle, nearest triangle).
+  NearPairSelection selection{false, true};
+  int steps_per_segment = 6;  ///< steps before the pair set is rebuilt, >= 1
+  /// A pair outside the segment's set closer than contact_distance - violation_tolerance
+  /// ends the segment at the previous sample, which is retried with a rebuilt set (>= 0).
+  double violation_tolerance = 0.0;
+  ContactGapOptions gap;
+};
+
+/// A converged point of a branch with contact.
+struct ContactBranchSample {
+  BranchSample sample;  ///< state, excess angle, arclength, negative count, tangent
+  double stretching_energy = 0.0;  ///< J
+  double bending_energy = 0.0;     ///< J
+  double penalty_energy = 0.0;     ///< J, P at the state
+  /// d(E_stretch + E_bend + P)/d(phi_e) along the branch (J/rad): the partial derivative at
+  /// fixed state, since the gradient vanishes at an equilibrium.
+  double energy_slope = 0.0;
+  double current_area = 0.0;   ///< m^2
+  double normalized_bending = 0.0;  ///< E_bend / area (J/m^2)
+  /// The segment's pairs and each pair's penalty force k (h - d)_+ (N), in the order of
+  /// ContactGapConstraints.
+  ContactCandidates pairs;
+  Eigen::VectorXd forces;
+  double min_distance = 0.0;  ///< over the segment's pairs (m); +infinity without pairs
+  int active_pairs = 0;       ///< pairs with a positive force
+  int segment = 0;            ///< which segment produced the sample
+};
+
+/// Where a trace with contact spent its effort, on top of the continuation's own TraceCost.
+struct ContactBranchCost {
+  TraceCost continuation;  ///< summed over segments (assembly includes the penalty)
+  double pair_search_seconds = 0.0;  ///< broad + narrow phase of the pair-set builds and checks
+  double sample_seconds = 0.0;       ///< energies, slopes and forces of the samples
+  int segments = 0;
+  int rebuilds_after_violation = 0;
+};
+
+/// Result of trace_contact_branch. `last` is always the last converged sample (the start if
+/// none converged), so no result is lost when the trace ends early.
+struct ContactBranchTrace {
+  std::vector<SpecialPoint> special_points;
+  std::vector<LocatedEvent> events;
+  ContactBranchSample last;
+  bool reached_bound = false;
+  std::string message;  ///< why the trace ended
+  int steps = 0;
+  int failed_steps = 0;
+  ContactBranchCost cost;
+};
+
+/// Traces the branch through the equilibrium (or nearby state) (x0, phi0) of `model` with
+/// self-contact on `proxy`, in the direction (direction_state, direction_parameter) (e.g. the
+/// tangent of a saved sample, or (0, +1) for increasing phi_e), holding `fixed_dofs`. Each
+/// converged sample (the corrected start first) goes to on_sample as soon as it converges;
+/// special points (changes of the negative count) and events as in trace_branch_along. The
+/// model's excess angle is left at the last sample's. Throws std::invalid_argument for bad
+/// options (naming the field).
+ContactBranchTrace trace_contact_branch(
+    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    double phi0, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+    double direction_parameter, const std::vector<Eigen::Index>& fixed_dofs,
+    const ContactBranchOptions& options,
+    const std::function<void(const ContactBranchSample&)>& on_sample = {},
+    const std::function<void(const SpecialPoint&)>& on_special = {},
+    const std::vector<BranchEvent>& events = {},
+    const std::function<void(const LocatedEvent&)>& on_event = {});
+
+/// The energies, slope, area and penalty forces of `sample` on the pair set `pairs` (as
+/// trace_contact_branch reports them); the model's excess angle is set to the sample's.
+ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,
+                                            const BranchSample& sample,
+                                            const ContactCandidates& pairs,
+                                            const ContactBranchOptions& options);
+
+}  // namespace growshell

@@ -1,0 +1,275 @@
+// trace_contact_branch (pseudo-arclength continuation through self-contact with the penalty):
+//  - far from contact it is the plain continuation of the shell energy, sample for sample;
+//  - through first contact every converged sample keeps every pair of the sheet (all
+//    vertex-triangle and edge-edge pairs, not only the penalised ones) at distance >= h - tol,
+//    with tol the penalty's penetration bound, and the penalty forces appear;
+//  - each sample's energy slope is dE/dphi along the branch (checked against the energies of
+//    neighbouring samples where the branch is smooth, before contact);
+//  - the stability index along the branch equals the negative count of the Lagrangian Hessian
+//    reduced to the active constraints (computed independently);
+//  - penalty and Ipopt agree as the stiffness grows (state difference ~ 1/k);
+//  - bad options are rejected naming the field.
+//
+// Scene: a coarse graded disc (8 rings, R = 1 m, h = 0.06 m, Y = 1e4 Pa, nu = 0.3) grown on
+// the n = 2 e-cone to phi_e = 5 without contact; its folds' gap reaches h near phi_e = 6.0.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/contact/contact_penalty.hpp"
+#include "libshell/contact/contact_proxy.hpp"
+#include "libshell/mesh/disc_mesh.hpp"
+#include "solvers/contact/contact_branch.hpp"
+#include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/contact/contact_stability.hpp"
+#include "solvers/continuation/growth_path.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+namespace growshell {
+namespace {
+
+constexpr double kH = 0.06;
+
+struct GrownDisc {
+  ShellModel model;
+  std::vector<Eigen::Index> pinned;
+  ContactProxy proxy;
+
+  Eigen::VectorXd start_;  // the cone at kStart, grown on first use
+
+  static constexpr double kStart = 5.0;
+
+  GrownDisc() : model(mesh(), settings()), proxy(make_contact_proxy(model, 1)) {
+    const Eigen::VectorXd& X = model.reference_positions();
+    pinned = mirror_axis_pinned_dofs(
+        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3),
+        model.sheet_vertices(), model.settings().growth.center);
+  }
+  const Eigen::VectorXd& start() {
+    if (start_.size() == 0) start_ = grown(kStart);
+    return start_;
+  }
+  static TriangleMesh mesh() {
+    DiscMeshOptions o;
+    o.rings = 8;
+    o.grading_exponent = 3.0;
+    o.min_spacing = kH / 2;
+    return make_disc_mesh(o);
+  }
+  static ShellModelSettings settings() {
+    ShellModelSettings s;
+    s.thickness = constant_thickness(kH);
+    return s;
+  }
+  /// The n = 2 cone at phi (grown from a mirror-symmetric perturbation).
+  Eigen::VectorXd grown(double phi) {
+    const Eigen::VectorXd& X = model.reference_positions();
+    Eigen::VectorXd dz = Eigen::VectorXd::Zero(X.size());
+    for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
+      const double r = std::hypot(X(3 * v), X(3 * v + 1));
+      const double t = std::atan2(X(3 * v + 1), X(3 * v));
+      dz(3 * v + 2) = 1e-3 * r * r * std::cos(2 * t);
+    }
+    NewtonOptions n;
+    n.gradient_tolerance = 1e-7 * model.natural_force_scale();
+    n.decrement_tolerance = 1e-9 * 1e4 * kH * kH * kH;
+    GrowthPathOptions steps;
+    steps.max_step = 0.5;
+    const GrowthPathResult path = grow_along_path(model, X + dz, 0.0, phi, pinned, NewtonSolver(n),
+                                                  [&](int) { return dz; }, steps);
+    EXPECT_TRUE(path.reached_target) << path.message;
+    return path.last.x;
+  }
+  ContactBranchOptions options() const {
+    ContactBranchOptions o;
+    o.contact_distance = kH;
+    o.exclusion_radius = 0.5 * std::numbers::pi * kH;
+    o.candidate_margin = kH;
+    o.stiffness = 10.0 * contact_stiffness_scale(1e4, kH, proxy_mean_edge_length(proxy));
+    o.violation_tolerance = 0.25 * kH;
+    o.arclength.initial_step = 0.02;
+    o.arclength.max_step = 0.05;
+    o.arclength.min_step = 1e-6;
+    o.arclength.gradient_tolerance = 1e-7 * model.natural_force_scale();
+    o.arclength.angle_test_max_step = 1e-3;
+    o.arclength.max_tangent_angle = 0.5;
+    return o;
+  }
+};
+
+GrownDisc& disc() {
+  static GrownDisc d;
+  return d;
+}
+
+TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  const double phi0 = GrownDisc::kStart;
+  ContactBranchOptions o = d.options();
+  o.arclength.max_steps = 4;
+  std::vector<ContactBranchSample> with_contact;
+  const ContactBranchTrace t = trace_contact_branch(
+      d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) { with_contact.push_back(s); });
+  EXPECT_EQ(t.steps, 4);
+  ShellGrowthFamily family(d.model);
+  std::vector<BranchSample> plain;
+  ArclengthOptions a = o.arclength;
+  trace_branch_along(family, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, a,
+                     [&](const BranchSample& s) { plain.push_back(s); });
+  ASSERT_EQ(with_contact.size(), plain.size());
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    // Same corrector on the same energy (no pair near); only the segment restarts re-correct
+    // the start, which moves it within the corrector tolerance (1e-7 Y h^3 / R in force, i.e.
+    // ~1e-10 m here).
+    EXPECT_NEAR(with_contact[i].sample.parameter, plain[i].parameter, 1e-9);
+    EXPECT_LT((with_contact[i].sample.x - plain[i].x).cwiseAbs().maxCoeff(), 1e-8);
+    EXPECT_EQ(with_contact[i].active_pairs, 0);
+    EXPECT_EQ(with_contact[i].penalty_energy, 0.0);
+  }
+  // dE/dphi along the branch: the centred difference of neighbouring samples' energies equals
+  // the mean of their slopes up to dphi^2 E'''/12 (dphi <= 0.05, E''' ~ E: ~2e-4 relative).
+  for (std::size_t i = 1; i < with_contact.size(); ++i) {
+    const ContactBranchSample& a = with_contact[i - 1];
+    const ContactBranchSample& b = with_contact[i];
+    const double dphi = b.sample.parameter - a.sample.parameter;
+    ASSERT_GT(dphi, 1e-3);
+    const double ea = a.stretching_energy + a.bending_energy;
+    const double eb = b.stretching_energy + b.bending_energy;
+    EXPECT_NEAR((eb - ea) / dphi, 0.5 * (a.energy_slope + b.energy_slope),
+                1e-3 * std::abs(a.energy_slope))
+        << "between phi_e = " << a.sample.parameter << " and " << b.sample.parameter;
+  }
+}
+
+TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolerance) {
+  GrownDisc& d = disc();
+  const double phi0 = GrownDisc::kStart;
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.arclength.parameter_max = 6.5;
+  o.arclength.max_steps = 60;
+  std::vector<ContactBranchSample> samples;
+  std::vector<Eigen::VectorXd> states;
+  const ContactBranchTrace t = trace_contact_branch(
+      d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) {
+        samples.push_back(s);
+        states.push_back(s.sample.x);
+      });
+  EXPECT_TRUE(t.reached_bound) << t.message;
+  ASSERT_GT(samples.size(), 5u);
+  EXPECT_GT(samples.back().sample.parameter, 6.5);
+  // Penetration bound: the largest penalty force over k. The pairs carry forces of order
+  // Y h^3 / R... per pair; with k = 10 Y l^2 / h that is far below h / 10. Assert h / 20.
+  const double tol = kH / 20;
+  int touching = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const ContactCandidates close = near_contact_pairs(
+        d.proxy, states[i], kH - tol, o.exclusion_radius, NearPairSelection{true, false});
+    EXPECT_TRUE(close.empty()) << "sample " << i << " at phi_e = " << samples[i].sample.parameter
+                               << " has " << close.vertex_triangle.rows() << " + "
+                               << close.edge_edge.rows() << " pairs closer than h - h/20";
+    if (samples[i].active_pairs > 0) {
+      ++touching;
+      EXPECT_GT(samples[i].forces.maxCoeff(), 0.0);
+      EXPECT_GT(samples[i].penalty_energy, 0.0);
+      EXPECT_LT(samples[i].min_distance, kH);
+      EXPECT_GT(samples[i].min_distance, kH - tol);
+    }
+  }
+  EXPECT_GT(touching, 2) << "the folds did not touch below phi_e = 6.5";
+  // Stability under contact: the negative count of the penalised Hessian (from the
+  // continuation's LDL^T) equals that of the Lagrangian Hessian reduced to the tangent space of
+  // the active pairs, with the penalty forces as multipliers (Debreu's lemma, file comment of
+  // contact_branch.hpp), computed independently from the inertia of the KKT matrix.
+  int compared = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (samples[i].active_pairs == 0) continue;
+    d.model.set_excess_angle(samples[i].sample.parameter);
+    ContactGapConstraints gaps(d.proxy, samples[i].pairs, kH, d.model.dimension());
+    const ReducedInertia reduced =
+        contact_constrained_inertia(d.model, gaps, states[i], samples[i].forces, 0.0, d.pinned);
+    EXPECT_EQ(reduced.negative, samples[i].sample.negative_eigenvalues)
+        << "at phi_e = " << samples[i].sample.parameter;
+    EXPECT_EQ(reduced.constraints, samples[i].active_pairs);
+    ++compared;
+  }
+  EXPECT_GT(compared, 2);
+
+  // Penalty against Ipopt at the last stable sample in contact: the penalty minimiser tends to
+  // the constrained one like 1/k (the penetration is f/k), so each tenfold stiffness shrinks
+  // the distance between the two states about tenfold.
+  std::size_t last = samples.size();
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (samples[i].active_pairs > 0 && samples[i].sample.negative_eigenvalues == 0) last = i;
+  ASSERT_LT(last, samples.size()) << "no stable sample in contact";
+  const double phi = samples[last].sample.parameter;
+  d.model.set_excess_angle(phi);
+  ContactSolveOptions ip;
+  ip.contact_distance = kH;
+  ip.exclusion_radius = o.exclusion_radius;
+  ip.candidate_margin = kH;
+  ip.violation_tolerance = 1e-3 * kH;
+  ip.minimizer.length_scale = kH;
+  ip.minimizer.force_scale = d.model.natural_force_scale();
+  ip.minimizer.tolerance = 1e-10;
+  ip.minimizer.constraint_violation_tolerance = 1e-9 * kH;
+  ip.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * kH;
+  ip.newton.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
+  const ContactSolveResult constrained =
+      solve_contact_equilibrium(d.model, d.proxy, states[last], d.pinned, ip);
+  ASSERT_TRUE(constrained.converged) << constrained.message;
+  ASSERT_TRUE(constrained.used_contact);
+  const ContactCandidates pairs = samples[last].pairs;
+  std::vector<double> error;
+  for (const double factor : {1.0, 10.0, 100.0}) {
+    ContactPenalty penalty(d.proxy, pairs, kH, factor * o.stiffness, d.model.dimension());
+    PenalizedEnergy energy(d.model, penalty);
+    NewtonOptions n;
+    n.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
+    const NewtonResult r = NewtonSolver(n).minimize(energy, constrained.x, d.pinned);
+    ASSERT_TRUE(r.converged()) << r.message;
+    error.push_back((r.x - constrained.x).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(error[0], 0.05 * kH);
+  EXPECT_LT(error[1], error[0] / 5) << error[0] << " -> " << error[1];
+  EXPECT_LT(error[2], error[1] / 5) << error[1] << " -> " << error[2];
+  EXPECT_FALSE(samples.front().active_pairs > 0) << "already touching at the start";
+}
+
+TEST(ContactBranch, BadOptionsAreRejectedByName) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd x = d.model.reference_positions();
+  const auto expect_message = [&](ContactBranchOptions o, const std::string& name) {
+    try {
+      trace_contact_branch(d.model, d.proxy, x, 0.0, Eigen::VectorXd::Zero(x.size()), 1.0,
+                           d.pinned, o);
+      ADD_FAILURE() << "no exception for " << name;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  ContactBranchOptions o = d.options();
+  o.stiffness = 0.0;
+  expect_message(o, "stiffness");
+  o = d.options();
+  o.contact_distance = -1.0;
+  expect_message(o, "contact_distance");
+  o = d.options();
+  o.violation_tolerance = kH;
+  expect_message(o, "violation_tolerance");
+  o = d.options();
+  o.steps_per_segment = 0;
+  expect_message(o, "steps_per_segment");
+}
+
+}  // namespace
+}  // namespace growshell
