@@ -16,6 +16,7 @@
 #include <string>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/assembly/shell_model.hpp"
@@ -48,28 +49,7 @@ const char* kUsage = R"(usage: econe_at [options]
   --verbose 1        print every Newton iteration
 )";
 
-/// Uniform number in [-1, 1) from the generator's raw output (portable across libraries).
-double uniform(std::mt19937& rng) { return 2.0 * (rng() / 4294967296.0) - 1.0; }
-
-/// Smooth out-of-plane perturbation, mirror-symmetric about the x-axis (a mirror axis of the
-/// mesh): sum over m = 1..4 of (r/R)^m a_m cos(m t). Keeping that symmetry fixes the
-/// orientation of the fold pattern, which the axisymmetric continuum leaves free and the
-/// six-fold mesh selects only through a nearly zero stiffness (docs/verification.md).
-Eigen::VectorXd perturbation(const ShellModel& model, double amplitude, std::mt19937& rng,
-                             double radius) {
-  double a[5];
-  for (int m = 1; m <= 4; ++m) a[m] = uniform(rng);
-  const Eigen::VectorXd& X = model.reference_positions();
-  Eigen::VectorXd dz = Eigen::VectorXd::Zero(X.size());
-  for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
-    const double r = std::hypot(X(3 * v), X(3 * v + 1)) / radius;
-    const double t = std::atan2(X(3 * v + 1), X(3 * v));
-    double z = 0.0;
-    for (int m = 1; m <= 4; ++m) z += std::pow(r, m) * a[m] * std::cos(m * t);
-    dz(3 * v + 2) = amplitude * radius * z;
-  }
-  return dz;
-}
+using examples::disc_perturbation;
 
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they are made
@@ -121,7 +101,7 @@ int run(int argc, char** argv) {
 
   std::mt19937 rng(static_cast<std::uint32_t>(seed));
   const Eigen::VectorXd x_start =
-      model.reference_positions() + perturbation(model, amplitude, rng, 1.0);
+      model.reference_positions() + disc_perturbation(model, amplitude, rng, 1.0);
   std::ofstream steps(out_dir + "/steps.csv");
   if (!steps) throw std::runtime_error("cannot write " + out_dir + "/steps.csv");
   steps << "phi_e,E_stretch,E_bend,Eb_hat,area,newton_iterations,folds,perturbations\n";
@@ -149,7 +129,7 @@ int run(int argc, char** argv) {
   path_options.max_step = max_step;
   const GrowthPathResult path = grow_along_path(
       model, x_start, 0.0, phi_target, pinned, newton,
-      [&](int) { return perturbation(model, amplitude, rng, 1.0); }, path_options, on_point,
+      [&](int) { return disc_perturbation(model, amplitude, rng, 1.0); }, path_options, on_point,
       log_iteration);
   const Eigen::VectorXd& x = path.last.x;
   if (!path.reached_target) {
