@@ -50,6 +50,7 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --core-radius RC    ignore the sheet within RC of the centre when measuring the gap
                       (default 0; see docs/validation.md)
   --tolerance T       corrector force tolerance relative to Y h^3 / R (default 1e-6)
+  --min-step S        smallest continuation step before the trace gives up (default 1e-4)
   --max-tangent-angle A  largest angle between successive tangents (rad, default 0.3);
                       raise it where a nearly broken symmetry bends the branch sharply
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
@@ -151,6 +152,7 @@ int run(int argc, char** argv) {
   set("--h", "thickness");
   set("--mode", "continuation.mode");
   set("--phi-max", "continuation.phi_max");
+  set("--min-step", "continuation.min_step");
   set("--out", "output.directory");
   const std::string rings = cl.text("--rings", "");
   if (!rings.empty())

@@ -45,7 +45,8 @@ h005_p3_r48 p3.json --h 0.005 --rings 48 --phi-max 6.85 --through-contact 1
 h002_p3_r24 p3.json --h 0.002 --rings 24 --phi-max 7.2 --through-contact 1
 h002_p3_r36 p3.json --h 0.002 --rings 36 --phi-max 7.2 --through-contact 1
 h001_p3_r24 p3.json --h 0.001 --rings 24 --phi-max 7.2 --through-contact 1 --tolerance 1e-4
-h001_p3_r36 p3.json --h 0.001 --rings 36 --phi-max 7.0 --through-contact 1 --tolerance 1e-4
+h001_p3_r36 p3.json --h 0.001 --rings 36 --phi-max 6.85 --through-contact 1 --tolerance 1e-5 --max-tangent-angle 0.8 --min-step 1e-7 --eigenmodes 0
+h001_p3_r48 p3.json --h 0.001 --rings 48 --phi-max 6.85 --through-contact 1 --tolerance 1e-5 --max-tangent-angle 0.8 --min-step 1e-7 --eigenmodes 0
 mode3_h02_r24 p3.json --h 0.02 --rings 24 --mode 3 --phi-max 7.2
 ring010_l16 p3.json --h 0.02 --inner-radius 0.1 --rings 16 --phi-max 7.6 --through-contact 1
 ring025_l16 p3.json --h 0.02 --inner-radius 0.25 --rings 16 --phi-max 7.8 --through-contact 1
