@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -23,12 +24,16 @@ int find_root(std::vector<int>& parent, int i) {
 std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
                                        const Eigen::Ref<const Eigen::VectorXd>& x,
                                        const Eigen::Ref<const Eigen::VectorXd>& forces,
-                                       double link_distance, double active_fraction) {
+                                       double link_distance, double active_fraction,
+                                       double max_normal_angle) {
   if (forces.size() != constraints.count())
     throw std::invalid_argument("contact_zones: forces has " + std::to_string(forces.size()) +
                                 " entries, expected " + std::to_string(constraints.count()));
   if (!(link_distance > 0.0)) throw std::invalid_argument("contact_zones: link_distance must be > 0");
   if (!(active_fraction >= 0.0)) throw std::invalid_argument("contact_zones: active_fraction must be >= 0");
+  if (!(max_normal_angle > 0.0 && max_normal_angle <= 0.5 * std::numbers::pi + 1e-12))
+    throw std::invalid_argument("contact_zones: max_normal_angle must be in (0, pi/2]");
+  const double min_normal_cosine = std::cos(max_normal_angle) - 1e-12;
   std::vector<ContactZone> zones;
   // A pair's force is its multiplier times its mollifier: a mollified edge-edge constraint
   // m (d - offset) pushes with multiplier * m along grad d at contact (ContactPairGeometry),
@@ -65,7 +70,9 @@ std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
   std::iota(parent.begin(), parent.end(), 0);
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j)
-      if ((point[static_cast<std::size_t>(i)] - point[static_cast<std::size_t>(j)]).norm() < link_distance)
+      if ((point[static_cast<std::size_t>(i)] - point[static_cast<std::size_t>(j)]).norm() < link_distance &&
+          std::abs(geometry[static_cast<std::size_t>(i)].normal.dot(geometry[static_cast<std::size_t>(j)].normal)) >=
+              min_normal_cosine)
         parent[static_cast<std::size_t>(find_root(parent, i))] = find_root(parent, j);
   std::vector<int> zone_of_root(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i) {

@@ -10,6 +10,8 @@
 
 #include "libshell/contact/contact_gap_constraints.hpp"
 
+#include <numbers>
+
 namespace growshell {
 
 /// One zone (global Cartesian basis, SI units).
@@ -22,14 +24,18 @@ struct ContactZone {
 
 /// Zones, largest force first. A pair is active if its force exceeds active_fraction times
 /// the largest force (>= 0); two active pairs belong to the same zone if their contact points
-/// (midpoints of the closest points) are closer than link_distance (m, > 0), transitively.
+/// (midpoints of the closest points) are closer than link_distance (m, > 0) and their normals
+/// differ by less than max_normal_angle (radians, in (0, pi/2]; pi/2 = proximity only),
+/// transitively. The normal test keeps apart zones that meet along a line, such as the upper
+/// and lower contact of an e-cone, whose planes cross at the apex at gamma ~ pi/2.
 /// Pair normals are sign-aligned with the zone's strongest pair before averaging (a normal's
 /// sign only says which primitive is listed first). Throws std::invalid_argument if forces
 /// does not have constraints.count() entries or the parameters are out of range.
 std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
                                        const Eigen::Ref<const Eigen::VectorXd>& x,
                                        const Eigen::Ref<const Eigen::VectorXd>& forces,
-                                       double link_distance, double active_fraction = 1e-3);
+                                       double link_distance, double active_fraction = 1e-3,
+                                       double max_normal_angle = std::numbers::pi / 2);
 
 /// Angle (radians, in [0, pi/2]) between the contact planes of the two largest zones; NaN if
 /// there are fewer than two zones.

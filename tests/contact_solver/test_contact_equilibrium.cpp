@@ -653,6 +653,16 @@ TEST(ContactZones, TwoZonesWithKnownForcesNormalsAndAngle) {
   EXPECT_EQ(all[2].pairs, (std::vector<Eigen::Index>{5}));
   // No force at all: no zone.
   EXPECT_TRUE(contact_zones(gaps, x, Eigen::VectorXd::Zero(7), 0.5).empty());
+  // The normal test: zone B's two normals differ by exactly 0.2 rad, zone A's by 0 (+z, -z).
+  EXPECT_EQ(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.21).size(), 2u);
+  const std::vector<ContactZone> by_normal = contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.19);
+  ASSERT_EQ(by_normal.size(), 3u);
+  EXPECT_EQ(by_normal[0].pairs, (std::vector<Eigen::Index>{0, 1, 2}));
+  EXPECT_EQ(by_normal[1].pairs, (std::vector<Eigen::Index>{3}));
+  EXPECT_EQ(by_normal[2].pairs, (std::vector<Eigen::Index>{4}));
+  EXPECT_NEAR(contact_plane_angle({by_normal[1], by_normal[2]}), 0.2, 1e-12);
+  EXPECT_THROW(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.0), std::invalid_argument);
+  EXPECT_THROW(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 2.0), std::invalid_argument);
 }
 
 // A mollified edge-edge pair pushes with multiplier * mollifier (ContactPairGeometry), and
