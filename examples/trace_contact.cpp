@@ -6,10 +6,10 @@
 // 2. The symmetric branch is followed by pseudo-arclength continuation with the contact penalty
 //    (solvers/contact/contact_branch.hpp) up to --phi-max, also where it is unstable; first
 //    contact and the loss of stability are located on it.
-// 3. Where the symmetric branch loses stability at a branch point, the skewed branch is entered
-//    along the critical mode and followed both through its fold and up to --phi-wind (beyond
-//    4 pi). Without such a point, the state at --phi-max is pushed along its lowest mode and
-//    relaxed; a lower-energy state found so is followed down to its end and up.
+// 3. The symmetric state at --phi-max is pushed along its lowest mode and relaxed; a
+//    lower-energy state found so is the skewed cone, followed down in phi_e to where its branch
+//    ends and up to --phi-wind (beyond 4 pi). (--skew-from branch-point instead enters the
+//    branch born at the symmetric branch's stability loss.)
 // 4. The energy crossing of the two branches (solvers/continuation/branch_crossing.hpp) is
 //    phi_e^crit.
 // Writes DIR/branch_symmetric.csv, DIR/branch_skewed.csv, DIR/events.json, DIR/cost.json,
@@ -35,18 +35,16 @@
 #include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
-#include "libshell/analysis/self_intersection.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/io/contact_snapshot.hpp"
 #include "libshell/io/scene.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/contact/contact_branch.hpp"
+#include "solvers/contact/econe_branches.hpp"
 #include "solvers/contact/contact_zones.hpp"
-#include "solvers/continuation/branch_crossing.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
-#include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace {
 
@@ -68,6 +66,10 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --max-step S            largest arclength step (default 0.05)
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --skewed 0              trace the symmetric branch only
+  --skew-from WHERE       top (default): relax the last symmetric state (at --phi-max) pushed
+                          along its lowest mode and follow what it finds down and up;
+                          branch-point: enter the branch born at the symmetric branch's
+                          stability loss along its critical mode
   --out DIR               output directory (default out/contact)
 )";
 
@@ -75,14 +77,8 @@ struct BranchOutput {
   std::string name;
   std::ofstream csv;
   std::vector<CollectionEntry> snapshots;
-  std::vector<BranchEnergySample> energies;
-  std::vector<ContactBranchSample> samples;  // states dropped (kept on disk)
   int index = 0;
 };
-
-double total_energy(const ContactBranchSample& s) {
-  return s.stretching_energy + s.bending_energy + s.penalty_energy;
-}
 
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
@@ -120,9 +116,12 @@ int run(int argc, char** argv) {
   const double max_step = cl.number("--max-step", 0.05);
   const double tolerance = cl.number("--tolerance", 1e-6);
   const bool skewed = cl.integer("--skewed", 1) != 0;
+  const std::string skew_from = cl.text("--skew-from", "top");
   const std::string out_dir = cl.text("--out", "out/contact");
   cl.reject_unknown();
   validate_scene(scene);
+  if (skew_from != "branch-point" && skew_from != "top")
+    throw std::invalid_argument("--skew-from must be branch-point or top, not '" + skew_from + "'");
   if (!(stiffness_factor > 0.0)) throw std::invalid_argument("--stiffness-factor must be > 0");
   if (!(max_step > 0.0)) throw std::invalid_argument("--max-step must be > 0");
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
@@ -155,7 +154,9 @@ int run(int argc, char** argv) {
   double phi = 0.0;
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = tolerance * model.natural_force_scale();
-  newton_options.decrement_tolerance = 1e-6 * Y * h * h * h;
+  // Converged by force only: the traces start from these states, and their corrector tests
+  // the force (a decrement test would stop Newton early on the nearly free orientation mode).
+  newton_options.decrement_tolerance = 0.0;
   if (!start_file.empty()) {
     const BranchSample s = examples::load_point(start_file, model.dimension());
     x = s.x;
@@ -226,7 +227,11 @@ int run(int argc, char** argv) {
       gaps = std::make_unique<ContactGapConstraints>(proxy, s.pairs, options.contact_distance,
                                                      model.dimension(), options.gap);
       if (s.active_pairs > 0) {
-        const std::vector<ContactZone> zones = contact_zones(*gaps, s.sample.x, s.forces, 0.1 * R);
+        // Zones: pairs within 0.1 R of each other whose normals differ by less than 30
+        // degrees, so that the upper and lower contact of the cone, which meet at the apex,
+        // stay apart.
+        const std::vector<ContactZone> zones =
+            contact_zones(*gaps, s.sample.x, s.forces, 0.1 * R, 1e-3, std::numbers::pi / 6);
         gamma = contact_plane_angle(zones);
       }
       force = s.forces.sum();
@@ -254,233 +259,64 @@ int run(int argc, char** argv) {
       b.snapshots.push_back({s.sample.parameter, shell_file});
       write_pvd(out_dir + "/branch_" + b.name + ".pvd", b.snapshots);
     }
-    b.energies.push_back({s.sample.parameter, total_energy(s), s.energy_slope});
-    ContactBranchSample light = s;
-    light.sample.x.resize(0);
-    light.sample.tangent_state.resize(0);
-    b.samples.push_back(std::move(light));
   };
   std::printf("%-9s %9s %12s %12s %8s %10s %3s %7s %5s %10s %3s\n", "branch", "phi_e",
               "E_stretch", "E_bend", "Eb_hat", "min_gap", "neg", "gamma", "n_c", "force", "it");
 
-  // The first-contact event: the smallest distance of near pairs reaches the contact distance.
-  const double h_c = options.contact_distance;
-  bool contact_found = false;  // after the event, the (costly) test function is not needed
-  BranchEvent contact_event;
-  contact_event.kind = "contact";
-  contact_event.value = [&](const BranchSample& s) {
-    if (contact_found) return -h_c;
-    const ContactCandidates near =
-        near_contact_pairs(proxy, s.x, 2.0 * h_c, options.exclusion_radius, options.selection);
-    if (near.empty()) return h_c;
-    ContactGapConstraints gaps(proxy, near, h_c, model.dimension(), options.gap);
-    double d = 2.0 * h_c;
-    for (Eigen::Index k = 0; k < gaps.count(); ++k) d = std::min(d, gaps.pair_geometry(s.x, k).distance);
-    return d - h_c;
-  };
-
-  // 2. The symmetric branch.
-  BranchOutput symmetric;
+  // 2-4. The symmetric branch, the skewed branch and the energy crossing.
+  EconeBranchOptions branches;
+  branches.contact = options;
+  branches.symmetric_end = phi_max;
+  branches.skewed_end = phi_wind > phi_max ? phi_wind : phi_max;
+  branches.skewed_start = skew_from == "top" ? SkewedStart::Top : SkewedStart::BranchPoint;
+  branches.trace_skewed = skewed;
+  branches.relaxation = newton_options;
+  branches.relaxation.max_iterations = 400;
+  BranchOutput symmetric, skew;
   open_branch(symmetric, "symmetric");
+  EconeBranchCallbacks callbacks;
+  callbacks.on_sample = [&](EconeBranch which, const ContactBranchSample& s) {
+    BranchOutput& b = which == EconeBranch::Symmetric ? symmetric : skew;
+    if (!b.csv.is_open()) open_branch(b, to_string(which));
+    write_sample(b, s);
+  };
   bool stability_lost = false;
-  std::optional<SpecialPoint> branch_point;  // where the symmetric branch loses stability
-  const auto on_special_symmetric = [&](const SpecialPoint& sp) {
+  callbacks.on_special = [&](EconeBranch which, const SpecialPoint& sp) {
     std::ostringstream extra;
     extra << ", \"negative_before\": " << sp.negative_before << ", \"negative_after\": "
           << sp.negative_after << ", \"multiplicity\": " << sp.multiplicity
-          << ", \"bracket\": " << json_number(sp.bracket_width) << ", \"branch\": \"symmetric\"";
+          << ", \"bracket\": " << json_number(sp.bracket_width) << ", \"branch\": \""
+          << to_string(which) << "\"";
     add_event(to_string(sp.kind), sp.parameter, extra.str());
-    if (!stability_lost && sp.negative_before == 0 && sp.negative_after > 0) {
+    if (which == EconeBranch::Symmetric && !stability_lost && sp.negative_before == 0 &&
+        sp.negative_after > 0) {
       stability_lost = true;
       add_event("stability_loss", sp.parameter, extra.str());
-      if (sp.kind == SpecialPoint::Kind::BranchPoint) branch_point = sp;
     }
   };
-  const auto on_event = [&](const LocatedEvent& e) {
-    if (e.kind == "contact") contact_found = true;
+  callbacks.on_event = [&](const LocatedEvent& e) {
     add_event(e.kind, e.parameter, ", \"bracket\": " + json_number(e.bracket_width));
   };
-  ContactBranchOptions symmetric_options = options;
-  symmetric_options.arclength.parameter_max = phi_max;
-  symmetric_options.arclength.parameter_min = phi - 1.0;
-  const ContactBranchTrace sym = trace_contact_branch(
-      model, proxy, x, phi, Eigen::VectorXd::Zero(model.dimension()), 1.0, pinned,
-      symmetric_options, [&](const ContactBranchSample& s) { write_sample(symmetric, s); },
-      on_special_symmetric, {contact_event}, on_event);
-  std::printf("# symmetric branch: %s (%d steps, %d failed, %d segments, %d rebuilds)\n",
-              sym.message.c_str(), sym.steps, sym.failed_steps, sym.cost.segments,
-              sym.cost.rebuilds_after_violation);
-  if (!stability_lost)
-    std::printf("# the symmetric branch stays stable up to phi_e = %.4f\n", sym.last.sample.parameter);
-
-  // 3. The skewed branch. Where the symmetric branch loses stability at a branch point, the
-  //    skewed branch is entered there along the critical mode (the eigenvector of the
-  //    penalised Hessian whose eigenvalue is nearest zero) and followed wherever it goes: back
-  //    down to its fold and up again (subcritical), or straight up. Otherwise the last
-  //    symmetric state is pushed along its lowest mode and relaxed, and a lower-energy state
-  //    found that way is followed down and up.
-  BranchOutput skew;
-  ContactBranchTrace skew_down, skew_up;
-  bool have_skewed = false;
-  double skew_search_seconds = 0.0;
-  const auto on_special_skewed = [&](const SpecialPoint& sp) {
+  callbacks.on_note = [](const std::string& text) { std::printf("# %s\n", text.c_str()); };
+  const EconeBranchResult result =
+      trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
+  if (!result.stability_loss)
+    std::printf("# the symmetric branch stays stable up to phi_e = %.4f\n",
+                result.symmetric.last.sample.parameter);
+  for (const EnergyCrossing& c : result.crossings) {
     std::ostringstream extra;
-    extra << ", \"negative_before\": " << sp.negative_before << ", \"negative_after\": "
-          << sp.negative_after << ", \"multiplicity\": " << sp.multiplicity
-          << ", \"bracket\": " << json_number(sp.bracket_width) << ", \"branch\": \"skewed\"";
-    add_event(to_string(sp.kind), sp.parameter, extra.str());
-  };
-  const double phi_top = phi_wind > phi_max ? phi_wind : phi_max;
-  // The mode nearest zero (or the lowest) of the penalised Hessian at (y, phi_y).
-  const auto critical_direction = [&](const Eigen::VectorXd& y, double phi_y, bool nearest_zero,
-                                      double* eigenvalue) {
-    model.set_excess_angle(phi_y);
-    const ContactCandidates pairs = near_contact_pairs(
-        proxy, y, h_c + options.candidate_margin, options.exclusion_radius, options.selection);
-    ContactPenalty penalty(proxy, pairs, h_c, stiffness, model.dimension(), options.gap);
-    PenalizedEnergy energy(model, penalty);
-    EigenpairOptions eig;
-    eig.count = 1;
-    if (nearest_zero) eig.shift = 0.0;
-    const Eigenpairs modes = lowest_eigenpairs(energy, y, pinned, eig);
-    *eigenvalue = modes.values[0];
-    return Eigen::VectorXd(modes.vectors.col(0));
-  };
-  if (skewed && branch_point.has_value()) {
-    const auto t_search = Clock::now();
-    double lambda = 0.0;
-    const Eigen::VectorXd mode =
-        critical_direction(branch_point->x, branch_point->parameter, true, &lambda);
-    skew_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
-    std::printf("# switching branches at phi_e = %.7f along the critical mode (eigenvalue %.3g)\n",
-                branch_point->parameter, lambda);
-    have_skewed = true;
-    open_branch(skew, "skewed");
-    ContactBranchOptions along = options;
-    along.arclength.parameter_min = phi - 1.0;
-    along.arclength.parameter_max = phi_top;
-    along.arclength.max_steps = 600;
-    // Off the branch point by h / 4 at the mode's largest entry: far enough for the corrector
-    // to stay off the symmetric branch, close enough to land on the bifurcating one.
-    const double offset = 0.25 * h / mode.cwiseAbs().maxCoeff();
-    skew_up = trace_contact_branch(
-        model, proxy, branch_point->x + offset * mode, branch_point->parameter, mode, 0.0, pinned,
-        along, [&](const ContactBranchSample& s) { write_sample(skew, s); }, on_special_skewed);
-    std::printf("# skewed branch: %s (%d steps)\n", skew_up.message.c_str(), skew_up.steps);
-  } else if (skewed) {
-    const auto t_search = Clock::now();
-    const BranchSample& top = sym.last.sample;
-    double lambda = 0.0;
-    const Eigen::VectorXd mode = critical_direction(top.x, top.parameter, false, &lambda);
-    const ContactCandidates top_pairs = near_contact_pairs(
-        proxy, top.x, h_c + options.candidate_margin, options.exclusion_radius, options.selection);
-    ContactPenalty top_penalty(proxy, top_pairs, h_c, stiffness, model.dimension(), options.gap);
-    PenalizedEnergy top_energy(model, top_penalty);
-    const double e_sym = top_energy.evaluate(top.x, nullptr, nullptr);
-    std::printf("# lowest eigenvalue at phi_e = %.4f: %.4g\n", top.parameter, lambda);
-    double best_energy = e_sym;
-    Eigen::VectorXd best;
-    for (int sign : {1, -1}) {
-      // A push of h / 2 at the largest entry along the mode (small enough that no layer is
-      // pushed through another), then relaxation with pair sets rebuilt until no pair outside
-      // the set comes closer than allowed; the shifted Newton descends along negative
-      // curvature.
-      Eigen::VectorXd y = top.x + sign * (0.5 * h / mode.cwiseAbs().maxCoeff()) * mode;
-      for (int round = 0; round < 6; ++round) {
-        const ContactCandidates round_pairs = near_contact_pairs(
-            proxy, y, h_c + options.candidate_margin, options.exclusion_radius, options.selection);
-        ContactPenalty round_penalty(proxy, round_pairs, h_c, stiffness, model.dimension(),
-                                     options.gap);
-        PenalizedEnergy round_energy(model, round_penalty);
-        NewtonOptions relax = newton_options;
-        relax.max_iterations = 400;
-        const NewtonResult r = NewtonSolver(relax).minimize(round_energy, y, pinned);
-        y = r.x;
-        const ContactCandidates close =
-            near_contact_pairs(proxy, y, h_c - options.violation_tolerance,
-                               options.exclusion_radius, options.selection);
-        bool inside = true;
-        for (Eigen::Index i = 0; i < close.vertex_triangle.rows() && inside; ++i) {
-          bool found = false;
-          for (Eigen::Index j = 0; j < round_pairs.vertex_triangle.rows() && !found; ++j)
-            found = round_pairs.vertex_triangle(j, 0) == close.vertex_triangle(i, 0);
-          inside = found;
-        }
-        if (r.converged() && inside) {
-          SelfIntersectionOptions si;
-          si.exclusion_radius = options.exclusion_radius;
-          const bool crossed = find_self_intersection(model, y, si).intersects;
-          std::printf("# relaxed the push %+d along the lowest mode: energy %.9e (symmetric "
-                      "%.9e), %d Newton iterations%s\n",
-                      sign, r.energy, e_sym, r.iterations,
-                      crossed ? "; rejected: the sheet passes through itself" : "");
-          if (!crossed && r.energy < best_energy - 1e-4 * std::abs(e_sym)) {
-            best_energy = r.energy;
-            best = y;
-          }
-          break;
-        }
-      }
-    }
-    skew_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
-    if (best.size() == 0) {
-      std::printf("# no state clearly below the symmetric one at phi_e = %.4f: no skewed "
-                  "branch found\n", top.parameter);
-    } else {
-      have_skewed = true;
-      open_branch(skew, "skewed");
-      ContactBranchOptions down = options;
-      down.arclength.parameter_min = phi - 1.0;
-      down.arclength.parameter_max = phi_top;
-      down.arclength.max_steps = 400;
-      skew_down = trace_contact_branch(
-          model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0,
-          pinned, down, [&](const ContactBranchSample& s) { write_sample(skew, s); },
-          on_special_skewed);
-      std::printf("# skewed branch, downwards: %s (%d steps)\n", skew_down.message.c_str(),
-                  skew_down.steps);
-      if (phi_wind > top.parameter) {
-        ContactBranchOptions up = options;
-        up.arclength.parameter_max = phi_wind;
-        up.arclength.parameter_min = top.parameter - 1.0;
-        skew_up = trace_contact_branch(
-            model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), 1.0,
-            pinned, up, [&](const ContactBranchSample& s) { write_sample(skew, s); },
-            on_special_skewed);
-        std::printf("# skewed branch, upwards: %s (%d steps)\n", skew_up.message.c_str(),
-                    skew_up.steps);
-      }
-    }
+    extra << ", \"energy\": " << json_number(c.energy) << ", \"slope_difference\": "
+          << json_number(c.slope_difference) << ", \"error_estimate\": "
+          << json_number(c.error_estimate);
+    add_event("energy_crossing", c.parameter, extra.str());
   }
-
-  // 4. phi_e^crit: equal total energy. A skewed branch born at a branch point touches the
-  //    symmetric one there (energy difference ~ (phi - phi_b)^2): that tangency is not a
-  //    crossing and is dropped.
-  if (have_skewed && skew.energies.size() >= 2 && symmetric.energies.size() >= 2) {
-    // The downward trace (if any) comes first in skew.energies, then the upward one; they share
-    // only their start, so each part is crossed with the symmetric branch separately.
-    const std::size_t n_first = std::min(skew.energies.size(),
-                                         static_cast<std::size_t>(skew_down.steps) + 1);
-    std::vector<std::vector<BranchEnergySample>> parts;
-    if (skew_down.steps > 0)
-      parts.emplace_back(skew.energies.begin(), skew.energies.begin() + n_first);
-    parts.emplace_back(skew.energies.begin() + (skew_down.steps > 0 ? n_first : 0),
-                       skew.energies.end());
-    int found = 0;
-    for (const auto& part : parts) {
-      if (part.size() < 2) continue;
-      for (const EnergyCrossing& c : energy_crossings(symmetric.energies, part)) {
-        if (branch_point && std::abs(c.parameter - branch_point->parameter) < 1e-3) continue;
-        std::ostringstream extra;
-        extra << ", \"energy\": " << json_number(c.energy) << ", \"slope_difference\": "
-              << json_number(c.slope_difference) << ", \"error_estimate\": "
-              << json_number(c.error_estimate);
-        add_event("energy_crossing", c.parameter, extra.str());
-        ++found;
-      }
-    }
-    if (found == 0) std::printf("# the branches' energies do not cross in the traced range\n");
-  }
+  if (result.skewed_found && result.crossings.empty())
+    std::printf("# the branches' energies do not cross in the traced range\n");
+  const ContactBranchTrace& sym = result.symmetric;
+  const ContactBranchTrace& skew_down = result.skewed_down;
+  const ContactBranchTrace& skew_up = result.skewed_up;
+  const double skew_search_seconds = result.skewed_search_seconds;
+  const bool have_skewed = result.skewed_found;
 
   // Cost.
   const double wall = std::chrono::duration<double>(Clock::now() - wall_start).count();

@@ -8,6 +8,8 @@
 //  - the stability index along the branch equals the negative count of the Lagrangian Hessian
 //    reduced to the active constraints (computed independently);
 //  - penalty and Ipopt agree as the stiffness grows (state difference ~ 1/k);
+//  - trace_econe_branches: first contact, the symmetric branch's stability loss, a lower
+//    skewed state found and followed;
 //  - bad options are rejected naming the field.
 //
 // Scene: a coarse graded disc (8 rings, R = 1 m, h = 0.06 m, Y = 1e4 Pa, nu = 0.3) grown on
@@ -28,6 +30,7 @@
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_stability.hpp"
+#include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -243,6 +246,61 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   EXPECT_LT(error[1], error[0] / 5) << error[0] << " -> " << error[1];
   EXPECT_LT(error[2], error[1] / 5) << error[1] << " -> " << error[2];
   EXPECT_FALSE(samples.front().active_pairs > 0) << "already touching at the start";
+}
+
+// trace_econe_branches on the same disc: the symmetric branch to phi_e = 6.5, then the state
+// there pushed along its lowest mode and relaxed. Values of the coarse disc (8 rings), not of
+// the paper's: first contact at 6.137, stability loss at 6.408, and at 6.6 a skewed state
+// 1.4 % below the symmetric one whose branch is stable and in contact down to 6.296.
+TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed) {
+  GrownDisc& d = disc();
+  EconeBranchOptions o;
+  o.contact = d.options();
+  o.contact.arclength.gradient_tolerance = 1e-5 * d.model.natural_force_scale();
+  o.contact.arclength.min_step = 1e-4;  // the skewed branch stalls at 6.296: give up early
+  o.symmetric_end = 6.5;
+  o.skewed_end = 6.5;
+  o.max_steps_per_branch = 40;
+  o.relaxation.gradient_tolerance = 1e-5 * d.model.natural_force_scale();
+  o.relaxation.max_iterations = 400;
+  std::vector<std::pair<EconeBranch, ContactBranchSample>> samples;
+  EconeBranchCallbacks callbacks;
+  callbacks.on_sample = [&](EconeBranch b, const ContactBranchSample& s) { samples.push_back({b, s}); };
+  const EconeBranchResult r =
+      trace_econe_branches(d.model, d.proxy, d.start(), GrownDisc::kStart, d.pinned, o, callbacks);
+  ASSERT_TRUE(r.first_contact.has_value());
+  EXPECT_GT(r.first_contact->parameter, 6.0);
+  EXPECT_LT(r.first_contact->parameter, 6.3);
+  EXPECT_LE(r.first_contact->bracket_width, 1e-6);
+  ASSERT_TRUE(r.stability_loss.has_value());
+  EXPECT_EQ(r.stability_loss->kind, SpecialPoint::Kind::BranchPoint);
+  EXPECT_GT(r.stability_loss->parameter, r.first_contact->parameter);
+  EXPECT_LT(r.stability_loss->parameter, 6.5);
+  EXPECT_LE(r.stability_loss->bracket_width, 1e-6);
+  ASSERT_TRUE(r.skewed_found) << r.skewed_message;
+  EXPECT_LT(r.skewed_relaxed_energy, (1.0 - 1e-2) * r.symmetric_top_energy) << r.skewed_message;
+  // The skewed branch is followed from the relaxed state: it starts stable and in contact.
+  int skewed = 0;
+  for (const auto& [branch, s] : samples) {
+    // The penalty acts on vertex-triangle pairs (as the paper's): no such pair of the sheet,
+    // nearest triangle or not, closer than h - h/20. Edges crossing between proxy vertices are
+    // not penalised; where the skewed cone's wings slide across each other they come to
+    // 0.921 h on this coarse proxy (spacing 2.4 h): bounded at 0.9 h here (docs/contact.md).
+    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH - kH / 20,
+                                                       o.contact.exclusion_radius,
+                                                       NearPairSelection{false, false});
+    EXPECT_TRUE(close.empty()) << to_string(branch) << " at phi_e = " << s.sample.parameter;
+    const ContactCandidates crossing_edges = near_contact_pairs(
+        d.proxy, s.sample.x, 0.9 * kH, o.contact.exclusion_radius, NearPairSelection{true, false});
+    EXPECT_TRUE(crossing_edges.empty()) << to_string(branch) << " at phi_e = " << s.sample.parameter;
+    if (branch != EconeBranch::Skewed) continue;
+    if (skewed++ == 0) {
+      EXPECT_EQ(s.sample.negative_eigenvalues, 0);
+      EXPECT_GT(s.active_pairs, 0);
+      EXPECT_NEAR(s.sample.parameter, r.symmetric.last.sample.parameter, 1e-9);
+    }
+  }
+  EXPECT_GT(skewed, 3);
 }
 
 TEST(ContactBranch, BadOptionsAreRejectedByName) {

@@ -1,0 +1,100 @@
+#pragma once
+/// \file
+/// The two e-cone branches past first contact and the critical excess angle between them: the
+/// symmetric branch followed through contact (also where it is unstable), the skewed branch
+/// found by relaxing a perturbed symmetric state (or entered at the symmetric branch's loss of
+/// stability) and followed down to where it ends and up, and phi_e^crit both ways (energy
+/// crossing, stability loss). Built on trace_contact_branch (contact_branch.hpp); see
+/// docs/contact.md.
+
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/contact/contact_proxy.hpp"
+#include "solvers/contact/contact_branch.hpp"
+#include "solvers/continuation/branch_crossing.hpp"
+
+namespace growshell {
+
+/// Which branch a sample or special point belongs to.
+enum class EconeBranch { Symmetric, Skewed };
+
+/// "symmetric" or "skewed".
+const char* to_string(EconeBranch branch);
+
+/// Where the skewed branch is looked for.
+enum class SkewedStart {
+  /// Relax the last symmetric state pushed along its lowest mode (the recipe: from
+  /// phi_e = 10 back down).
+  Top,
+  /// Enter the branch born at the symmetric branch's first stability loss along its critical
+  /// mode (falls back to Top if there is no such branch point).
+  BranchPoint,
+};
+
+/// Settings of trace_econe_branches.
+struct EconeBranchOptions {
+  /// Distances, stiffness, pair selection and step control of every trace (parameter bounds
+  /// and max_steps are set per branch from the fields below).
+  ContactBranchOptions contact;
+  double symmetric_end = 10.0;  ///< the symmetric branch is followed up to this phi_e
+  /// The skewed branch is followed up to this phi_e (e.g. beyond 4 pi), and down to
+  /// phi_start - 1 at most.
+  double skewed_end = 10.0;
+  int max_steps_per_branch = 600;
+  bool trace_skewed = true;  ///< false: the symmetric branch only
+  SkewedStart skewed_start = SkewedStart::Top;
+  /// Push along the lowest mode, in units of the contact distance at the mode's largest entry
+  /// (small enough that no layer is pushed through another).
+  double push = 0.5;
+  /// A relaxed state counts as a different (skewed) state only if its energy is lower than
+  /// the symmetric one by this fraction.
+  double energy_margin = 1e-4;
+  /// Newton settings of the relaxation (minimisation of shell + penalty at fixed phi_e).
+  NewtonOptions relaxation;
+  /// Crossings closer than this to the branch point the skewed branch was entered at are the
+  /// tangency of a pitchfork, not a crossing, and are dropped (radians).
+  double tangency_exclusion = 1e-3;
+};
+
+/// Outcome of trace_econe_branches. Traces keep their last sample and message even when they
+/// end early, so nothing computed is lost.
+struct EconeBranchResult {
+  ContactBranchTrace symmetric;
+  ContactBranchTrace skewed_down;  ///< from the relaxed state downwards (Top)
+  ContactBranchTrace skewed_up;    ///< from the relaxed state upwards, or from the branch point
+  std::optional<LocatedEvent> first_contact;  ///< gap = contact distance on the symmetric branch
+  /// First change of the symmetric branch's negative count from 0: phi_e^crit by stability.
+  std::optional<SpecialPoint> stability_loss;
+  bool skewed_found = false;
+  std::string skewed_message;  ///< how the skewed branch was found, or why not
+  double skewed_relaxed_energy = 0.0;    ///< J, at the relaxed skewed state (Top)
+  double symmetric_top_energy = 0.0;     ///< J, the symmetric state it was compared with
+  /// Energy crossings of the two branches (E_s + E_b + P), by parameter: phi_e^crit by energy.
+  std::vector<EnergyCrossing> crossings;
+  double skewed_search_seconds = 0.0;
+};
+
+/// Callbacks of trace_econe_branches (all optional), called as results arrive.
+struct EconeBranchCallbacks {
+  std::function<void(EconeBranch, const ContactBranchSample&)> on_sample;
+  std::function<void(EconeBranch, const SpecialPoint&)> on_special;
+  std::function<void(const LocatedEvent&)> on_event;  ///< first contact
+  std::function<void(const std::string&)> on_note;    ///< progress notes for a log
+};
+
+/// From the equilibrium (x0, phi0) of `model` below first contact (e.g. the n = 2 cone grown
+/// without contact), with `fixed_dofs` held: traces the symmetric branch up to
+/// options.symmetric_end, finds and traces the skewed branch, and locates the energy crossing.
+/// Throws std::invalid_argument for bad options (naming the field).
+EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& proxy,
+                                       const Eigen::Ref<const Eigen::VectorXd>& x0, double phi0,
+                                       const std::vector<Eigen::Index>& fixed_dofs,
+                                       const EconeBranchOptions& options,
+                                       const EconeBranchCallbacks& callbacks = {});
+
+}  // namespace growshell
