@@ -1,0 +1,188 @@
+// crit_vs_h: the critical excess angle phi_e^crit for a list of thicknesses. For each h the disc
+// is grown from flat without contact to --phi-start, the symmetric branch is followed through
+// contact to --phi-top, the state there is pushed along its lowest mode and relaxed onto the
+// skewed cone, whose branch is followed down and up to --phi-top, and phi_e^crit is reported
+// both ways: where the energies of the two branches cross, and where the symmetric branch
+// loses stability (solvers/contact/econe_branches.hpp). One line per thickness on stdout and
+// in DIR/crit_vs_h.csv; each thickness's branches and events as trace_contact writes them are
+// not kept (run trace_contact --h H for those).
+#include <Eigen/Core>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "examples/support/command_line.hpp"
+#include "examples/support/disc_perturbation.hpp"
+#include "examples/support/guarded_main.hpp"
+#include "libshell/contact/contact_penalty.hpp"
+#include "libshell/io/scene.hpp"
+#include "solvers/contact/econe_branches.hpp"
+#include "solvers/continuation/growth_path.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+
+namespace {
+
+using namespace growshell;
+using Clock = std::chrono::steady_clock;
+
+const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
+  SCENE.json          scene (default: the paper's disc); its thickness is replaced by each h
+  --h LIST            thicknesses, comma separated (default 0.04,0.03,0.02,0.015)
+  --rings N           mesh rings (default: the scene's)
+  --phi-start P       contact-free growth from flat up to P (default 5.0)
+  --phi-top P         the symmetric branch is followed up to P and relaxed there (default 7.0)
+  --stiffness-factor F  penalty stiffness k = F Y l^2 / h (default 10)
+  --max-step S        largest arclength step (default 0.05)
+  --tolerance T       force tolerance relative to Y h^3 / R (default 1e-5)
+  --out DIR           output directory (default out/crit_vs_h)
+)";
+
+std::vector<double> parse_list(const std::string& text) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    const double v = std::stod(item, &used);
+    if (used != item.size() || !(v > 0.0))
+      throw std::invalid_argument("--h: '" + item + "' is not a positive number");
+    values.push_back(v);
+  }
+  if (values.empty()) throw std::invalid_argument("--h needs at least one thickness");
+  return values;
+}
+
+std::string number_or_nan(double v) {
+  if (!std::isfinite(v)) return "nan";
+  std::ostringstream o;
+  o << std::setprecision(10) << v;
+  return o.str();
+}
+
+int run(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  Scene base = default_scene();
+  int first_option = 1;
+  if (argc > 1 && argv[1][0] != '-') {
+    base = read_scene(argv[1]);
+    first_option = 2;
+  }
+  std::vector<char*> rest(argv + first_option, argv + argc);
+  rest.insert(rest.begin(), argv[0]);
+  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  if (cl.help()) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  const std::vector<double> thicknesses = parse_list(cl.text("--h", "0.04,0.03,0.02,0.015"));
+  const std::string rings = cl.text("--rings", "");
+  const double phi_start = cl.number("--phi-start", 5.0);
+  const double phi_top = cl.number("--phi-top", 7.0);
+  const double stiffness_factor = cl.number("--stiffness-factor", 10.0);
+  const double max_step = cl.number("--max-step", 0.05);
+  const double tolerance = cl.number("--tolerance", 1e-5);
+  const std::string out_dir = cl.text("--out", "out/crit_vs_h");
+  cl.reject_unknown();
+  if (!(phi_start > 0.0 && phi_start < phi_top))
+    throw std::invalid_argument("need 0 < --phi-start < --phi-top");
+  if (!(stiffness_factor > 0.0)) throw std::invalid_argument("--stiffness-factor must be > 0");
+  if (!(max_step > 0.0)) throw std::invalid_argument("--max-step must be > 0");
+  if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
+  if (base.geometry.shape != SceneShape::Disc)
+    throw std::invalid_argument("crit_vs_h traces discs (geometry.shape = disc)");
+  if (!rings.empty()) apply_override(base, "mesh.rings", rings);
+  validate_scene(base);
+
+  std::filesystem::create_directories(out_dir);
+  std::ofstream csv(out_dir + "/crit_vs_h.csv");
+  csv << "h,phi_contact,phi_crit_stability,phi_crit_energy,crossing_error_estimate,"
+         "crossings,skewed_found,symmetric_steps,skewed_steps,seconds\n";
+  csv.flush();
+  std::printf("%8s %12s %14s %14s %10s %6s %8s\n", "h", "phi_contact", "crit_stability",
+              "crit_energy", "error", "skewed", "seconds");
+  for (const double h : thicknesses) {
+    const auto t0 = Clock::now();
+    Scene scene = base;
+    apply_override(scene, "thickness", number_or_nan(h));
+    validate_scene(scene);
+    ShellModel model(scene_mesh(scene), scene_model_settings(scene));
+    const double R = scene.geometry.radius;
+    const double Y = scene.material.youngs_modulus;
+    const ContactProxy proxy = make_contact_proxy(model, 1);
+    const Eigen::VectorXd& X = model.reference_positions();
+    const auto pinned = mirror_axis_pinned_dofs(
+        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3),
+        model.sheet_vertices(), model.settings().growth.center);
+    NewtonOptions newton;
+    newton.gradient_tolerance = tolerance * model.natural_force_scale();
+    newton.decrement_tolerance = 0.0;  // by force only, as the traces starting here test it
+
+    std::mt19937 rng(scene.continuation.seed);
+    const double amplitude = scene.continuation.perturbation_amplitude;
+    GrowthPathOptions path_options;
+    path_options.max_step = 0.25;
+    const GrowthPathResult path = grow_along_path(
+        model, X + examples::disc_perturbation(model, amplitude, rng, R), 0.0, phi_start, pinned,
+        NewtonSolver(newton),
+        [&](int) { return examples::disc_perturbation(model, amplitude, rng, R); }, path_options);
+    if (!path.reached_target) {
+      std::printf("%8.4f  growth from flat ended at phi_e = %.4f: %s\n", h, path.last.excess_angle,
+                  path.message.c_str());
+      csv << h << ",nan,nan,nan,nan,0,0,0,0,"
+          << std::chrono::duration<double>(Clock::now() - t0).count() << '\n';
+      csv.flush();
+      continue;
+    }
+
+    EconeBranchOptions options;
+    ContactBranchOptions& c = options.contact;
+    c.contact_distance = scene.physics.contact_distance.value_or(h);
+    c.exclusion_radius = 0.5 * std::numbers::pi * h;
+    c.candidate_margin = h;
+    c.stiffness = stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
+    c.violation_tolerance = 0.25 * h;
+    c.arclength.initial_step = max_step / 4;
+    c.arclength.max_step = max_step;
+    c.arclength.min_step = 1e-6;
+    c.arclength.gradient_tolerance = tolerance * model.natural_force_scale();
+    c.arclength.max_tangent_angle = 0.5;
+    c.arclength.angle_test_max_step = 0.02 * max_step;
+    options.symmetric_end = phi_top;
+    options.skewed_end = phi_top;
+    options.skewed_start = SkewedStart::Top;
+    options.relaxation = newton;
+    options.relaxation.max_iterations = 400;
+    const EconeBranchResult r =
+        trace_econe_branches(model, proxy, path.last.x, path.last.excess_angle, pinned, options);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double contact = r.first_contact ? r.first_contact->parameter : nan;
+    const double stability = r.stability_loss ? r.stability_loss->parameter : nan;
+    const double crossing = r.crossings.empty() ? nan : r.crossings.front().parameter;
+    const double error = r.crossings.empty() ? nan : r.crossings.front().error_estimate;
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    std::printf("%8.4f %12.6f %14.7f %14.7f %10.2e %6s %8.1f\n", h, contact, stability, crossing,
+                error, r.skewed_found ? "yes" : "no", seconds);
+    csv << h << ',' << number_or_nan(contact) << ',' << number_or_nan(stability) << ','
+        << number_or_nan(crossing) << ',' << number_or_nan(error) << ',' << r.crossings.size()
+        << ',' << (r.skewed_found ? 1 : 0) << ',' << r.symmetric.steps << ','
+        << r.skewed_down.steps + r.skewed_up.steps << ',' << seconds << '\n';
+    csv.flush();
+  }
+  std::printf("# wrote %s/crit_vs_h.csv\n", out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return growshell::examples::guarded_main("crit_vs_h", run, argc, argv);
+}
