@@ -124,7 +124,8 @@ int run(int argc, char** argv) {
         model.sheet_vertices(), model.settings().growth.center);
     NewtonOptions newton;
     newton.gradient_tolerance = tolerance * model.natural_force_scale();
-    newton.decrement_tolerance = 0.0;  // by force only, as the traces starting here test it
+    newton.decrement_tolerance =
+        1e-9 * Y * h * h * h;  // tight: the traces starting here test the force
 
     std::mt19937 rng(scene.continuation.seed);
     const double amplitude = scene.continuation.perturbation_amplitude;

@@ -12,9 +12,11 @@
 //    branch born at the symmetric branch's stability loss.)
 // 4. The energy crossing of the two branches (solvers/continuation/branch_crossing.hpp) is
 //    phi_e^crit.
-// Writes DIR/branch_symmetric.csv, DIR/branch_skewed.csv, DIR/events.json, DIR/cost.json,
-// DIR/scene.json, VTK snapshots of the shell and of the contact proxy (contact flags and
-// forces) with DIR/branch_<name>.pvd, and every sample under DIR/states_<name>/.
+// 5. Beyond the skewed branch's upper end the sheet is grown on up to --phi-wind by minimising at
+//    every step (solvers/contact/contact_growth_path.hpp): the wound-up shapes.
+// Writes DIR/branch_symmetric.csv, DIR/branch_skewed.csv, DIR/branch_grown.csv, DIR/events.json,
+// DIR/cost.json, DIR/scene.json, VTK snapshots of the shell and of the contact proxy (contact flags
+// and forces) with DIR/branch_<name>.pvd, and every sample under DIR/states_<name>/.
 #include <Eigen/Core>
 #include <chrono>
 #include <cmath>
@@ -41,8 +43,9 @@
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/contact/contact_branch.hpp"
-#include "solvers/contact/econe_branches.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/contact_zones.hpp"
+#include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -56,7 +59,8 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --h H                   thickness (overrides the scene)
   --rings N               mesh rings
   --phi-max P             end of the symmetric branch and start of the skewed one (default 10)
-  --phi-wind P            follow the skewed branch forward up to P (default 13; 0 = skip)
+  --phi-wind P            follow the skewed branch forward up to P, and beyond its end grow
+                          on by minimisation (DIR/branch_grown.csv; default 13; 0 = skip)
   --phi-contact-start P   contact-free growth from flat up to P (default 5.5)
   --start STATE           start from a saved contact-free state instead (trace_disc's
                           DIR/states/point_NNNNN.txt of the same scene)
@@ -143,10 +147,11 @@ int run(int argc, char** argv) {
   const auto pinned = mirror_axis_pinned_dofs(
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3),
       model.sheet_vertices(), model.settings().growth.center);
-  std::printf("# disc R = %g, h = %g, %lld unknowns, proxy %lld vertices (spacing %.4g), "
-              "penalty k = %.4g N/m\n",
-              R, h, static_cast<long long>(model.dimension()),
-              static_cast<long long>(proxy.num_vertices()), spacing, stiffness);
+  std::printf(
+      "# disc R = %g, h = %g, %lld unknowns, proxy %lld vertices (spacing %.4g), "
+      "penalty k = %.4g N/m\n",
+      R, h, static_cast<long long>(model.dimension()), static_cast<long long>(proxy.num_vertices()),
+      spacing, stiffness);
   const auto wall_start = Clock::now();
 
   // 1. Contact-free growth to the start of the contact trace.
@@ -154,9 +159,9 @@ int run(int argc, char** argv) {
   double phi = 0.0;
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = tolerance * model.natural_force_scale();
-  // Converged by force only: the traces start from these states, and their corrector tests
-  // the force (a decrement test would stop Newton early on the nearly free orientation mode).
-  newton_options.decrement_tolerance = 0.0;
+  // The traces start from these states and their corrector tests the force, so the decrement
+  // test (which stops Newton's crawl along the nearly free orientation mode) is kept tight.
+  newton_options.decrement_tolerance = 1e-9 * Y * h * h * h;
   if (!start_file.empty()) {
     const BranchSample s = examples::load_point(start_file, model.dimension());
     x = s.x;
@@ -165,8 +170,7 @@ int run(int argc, char** argv) {
   } else {
     std::mt19937 rng(scene.continuation.seed);
     const double amplitude = scene.continuation.perturbation_amplitude;
-    const Eigen::VectorXd x_start =
-        X + examples::disc_perturbation(model, amplitude, rng, R);
+    const Eigen::VectorXd x_start = X + examples::disc_perturbation(model, amplitude, rng, R);
     GrowthPathOptions path_options;
     path_options.max_step = 0.25;
     const GrowthPathResult path = grow_along_path(
@@ -242,9 +246,9 @@ int run(int argc, char** argv) {
                 s.sample.corrector_iterations);
     b.csv << s.sample.parameter << ',' << s.stretching_energy << ',' << s.bending_energy << ','
           << s.normalized_bending << ',' << s.current_area << ',' << s.min_distance << ','
-          << s.sample.negative_eigenvalues << ',' << gamma << ',' << s.active_pairs << ','
-          << force << ',' << s.penalty_energy << ',' << s.energy_slope << ','
-          << s.sample.arclength << ',' << s.sample.corrector_iterations << ','
+          << s.sample.negative_eigenvalues << ',' << gamma << ',' << s.active_pairs << ',' << force
+          << ',' << s.penalty_energy << ',' << s.energy_slope << ',' << s.sample.arclength << ','
+          << s.sample.corrector_iterations << ','
           << s.pairs.vertex_triangle.rows() + s.pairs.edge_edge.rows() << '\n';
     b.csv.flush();
     std::ostringstream name;
@@ -260,8 +264,8 @@ int run(int argc, char** argv) {
       write_pvd(out_dir + "/branch_" + b.name + ".pvd", b.snapshots);
     }
   };
-  std::printf("%-9s %9s %12s %12s %8s %10s %3s %7s %5s %10s %3s\n", "branch", "phi_e",
-              "E_stretch", "E_bend", "Eb_hat", "min_gap", "neg", "gamma", "n_c", "force", "it");
+  std::printf("%-9s %9s %12s %12s %8s %10s %3s %7s %5s %10s %3s\n", "branch", "phi_e", "E_stretch",
+              "E_bend", "Eb_hat", "min_gap", "neg", "gamma", "n_c", "force", "it");
 
   // 2-4. The symmetric branch, the skewed branch and the energy crossing.
   EconeBranchOptions branches;
@@ -275,7 +279,15 @@ int run(int argc, char** argv) {
   BranchOutput symmetric, skew;
   open_branch(symmetric, "symmetric");
   EconeBranchCallbacks callbacks;
+  // The highest stable skewed state: where the growth towards --phi-wind starts.
+  Eigen::VectorXd top_skewed;
+  double top_skewed_phi = -1.0;
   callbacks.on_sample = [&](EconeBranch which, const ContactBranchSample& s) {
+    if (which == EconeBranch::Skewed && s.sample.negative_eigenvalues == 0 &&
+        s.sample.parameter > top_skewed_phi) {
+      top_skewed_phi = s.sample.parameter;
+      top_skewed = s.sample.x;
+    }
     BranchOutput& b = which == EconeBranch::Symmetric ? symmetric : skew;
     if (!b.csv.is_open()) open_branch(b, to_string(which));
     write_sample(b, s);
@@ -283,8 +295,9 @@ int run(int argc, char** argv) {
   bool stability_lost = false;
   callbacks.on_special = [&](EconeBranch which, const SpecialPoint& sp) {
     std::ostringstream extra;
-    extra << ", \"negative_before\": " << sp.negative_before << ", \"negative_after\": "
-          << sp.negative_after << ", \"multiplicity\": " << sp.multiplicity
+    extra << ", \"negative_before\": " << sp.negative_before
+          << ", \"negative_after\": " << sp.negative_after
+          << ", \"multiplicity\": " << sp.multiplicity
           << ", \"bracket\": " << json_number(sp.bracket_width) << ", \"branch\": \""
           << to_string(which) << "\"";
     add_event(to_string(sp.kind), sp.parameter, extra.str());
@@ -305,13 +318,39 @@ int run(int argc, char** argv) {
                 result.symmetric.last.sample.parameter);
   for (const EnergyCrossing& c : result.crossings) {
     std::ostringstream extra;
-    extra << ", \"energy\": " << json_number(c.energy) << ", \"slope_difference\": "
-          << json_number(c.slope_difference) << ", \"error_estimate\": "
-          << json_number(c.error_estimate);
+    extra << ", \"energy\": " << json_number(c.energy)
+          << ", \"slope_difference\": " << json_number(c.slope_difference)
+          << ", \"error_estimate\": " << json_number(c.error_estimate);
     add_event("energy_crossing", c.parameter, extra.str());
   }
   if (result.skewed_found && result.crossings.empty())
     std::printf("# the branches' energies do not cross in the traced range\n");
+  // 5. Beyond the skewed branch's upper end: grow on, minimising at every step, so that the path
+  //    drops onto whatever stable state follows (the wound-up cones), up to --phi-wind.
+  BranchOutput grown;
+  std::string growth_message = "not needed";
+  if (result.skewed_found && phi_wind > top_skewed_phi + 1e-9 && top_skewed.size() > 0) {
+    ContactGrowthOptions growth;
+    growth.contact = options;
+    growth.newton = branches.relaxation;
+    growth.max_step = 0.05;
+    std::printf("# growing from the stable skewed state at phi_e = %.5f to %.4f\n", top_skewed_phi,
+                phi_wind);
+    open_branch(grown, "grown");
+    const ContactGrowthResult g = grow_with_contact(
+        model, proxy, top_skewed, top_skewed_phi, phi_wind, pinned, growth,
+        [&](const ContactGrowthPoint& p) {
+          if (p.jumped) {
+            std::ostringstream extra;
+            extra << ", \"branch\": \"grown\", \"saddle_escapes\": " << p.saddle_escapes;
+            add_event("jump", p.sample.sample.parameter, extra.str());
+          }
+          write_sample(grown, p.sample);
+        });
+    growth_message = g.reached_target ? "reached phi_e = " + std::to_string(phi_wind) : g.message;
+    std::printf("# growth: %s (%d steps, %d failed)\n", growth_message.c_str(), g.steps,
+                g.failed_steps);
+  }
   const ContactBranchTrace& sym = result.symmetric;
   const ContactBranchTrace& skew_down = result.skewed_down;
   const ContactBranchTrace& skew_up = result.skewed_up;
@@ -325,8 +364,9 @@ int run(int argc, char** argv) {
     std::ostringstream o;
     const TraceCost& c = t.cost.continuation;
     o << "{\"steps\": " << t.steps << ", \"failed_steps\": " << t.failed_steps
-      << ", \"segments\": " << t.cost.segments << ", \"rebuilds\": "
-      << t.cost.rebuilds_after_violation << ", \"linearizations\": " << c.linearizations
+      << ", \"segments\": " << t.cost.segments
+      << ", \"rebuilds\": " << t.cost.rebuilds_after_violation
+      << ", \"linearizations\": " << c.linearizations
       << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
       << ", \"assembly_seconds\": " << c.assembly_seconds
       << ", \"factorization_seconds\": " << c.factorization_seconds

@@ -152,8 +152,9 @@ ContactBranchTrace trace_contact_branch(
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
-    const ContactCandidates pairs = near_contact_pairs(
-        proxy, start_x, options.contact_distance + margin, options.exclusion_radius, options.selection);
+    const ContactCandidates pairs =
+        near_contact_pairs(proxy, start_x, options.contact_distance + margin,
+                           options.exclusion_radius, options.selection);
     out.cost.pair_search_seconds += seconds_since(t0);
     ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
                            model.dimension(), options.gap);
@@ -227,8 +228,10 @@ ContactBranchTrace trace_contact_branch(
       out.cost.continuation.total_seconds += seconds_since(t0);
       ++out.cost.rebuilds_after_violation;
       if (++retries > 6)
-        throw std::runtime_error("trace_contact_branch: pairs keep coming closer than allowed "
-                                 "after 6 rebuilds at phi_e = " + std::to_string(start_phi));
+        throw std::runtime_error(
+            "trace_contact_branch: pairs keep coming closer than allowed "
+            "after 6 rebuilds at phi_e = " +
+            std::to_string(start_phi));
       if (have_last_good && samples_in_segment > 1) {
         // Restart from the last accepted sample with a set rebuilt there.
         start_x = last_good.x;

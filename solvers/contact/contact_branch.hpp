@@ -51,14 +51,14 @@ struct ContactBranchOptions {
 
 /// A converged point of a branch with contact.
 struct ContactBranchSample {
-  BranchSample sample;  ///< state, excess angle, arclength, negative count, tangent
+  BranchSample sample;             ///< state, excess angle, arclength, negative count, tangent
   double stretching_energy = 0.0;  ///< J
   double bending_energy = 0.0;     ///< J
   double penalty_energy = 0.0;     ///< J, P at the state
   /// d(E_stretch + E_bend + P)/d(phi_e) along the branch (J/rad): the partial derivative at
   /// fixed state, since the gradient vanishes at an equilibrium.
   double energy_slope = 0.0;
-  double current_area = 0.0;   ///< m^2
+  double current_area = 0.0;        ///< m^2
   double normalized_bending = 0.0;  ///< E_bend / area (J/m^2)
   /// The segment's pairs and each pair's penalty force k (h - d)_+ (N), in the order of
   /// ContactGapConstraints.
@@ -71,7 +71,7 @@ struct ContactBranchSample {
 
 /// Where a trace with contact spent its effort, on top of the continuation's own TraceCost.
 struct ContactBranchCost {
-  TraceCost continuation;  ///< summed over segments (assembly includes the penalty)
+  TraceCost continuation;            ///< summed over segments (assembly includes the penalty)
   double pair_search_seconds = 0.0;  ///< broad + narrow phase of the pair-set builds and checks
   double sample_seconds = 0.0;       ///< energies, slopes and forces of the samples
   int segments = 0;

@@ -9,6 +9,7 @@
 #include "libshell/analysis/self_intersection.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
@@ -21,10 +22,6 @@ const char* to_string(EconeBranch branch) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-bool same_rows(const Eigen::MatrixX2i& a, const Eigen::MatrixX2i& b) {
-  return a.rows() == b.rows() && a == b;
-}
 
 /// The penalised energy of the pairs near y, with its pair set.
 struct NearPenalty {
@@ -39,46 +36,17 @@ struct NearPenalty {
         energy(model, penalty) {}
 };
 
-/// The eigenvector of the penalised Hessian at (y, phi) nearest zero (nearest_zero) or lowest.
-Eigen::VectorXd mode_at(ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
-                        double phi, const std::vector<Eigen::Index>& fixed,
-                        const ContactBranchOptions& o, bool nearest_zero, double* eigenvalue) {
+/// The `count` eigenpairs of the penalised Hessian at (y, phi) nearest zero (nearest_zero) or
+/// lowest.
+Eigenpairs modes_at(ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
+                    double phi, const std::vector<Eigen::Index>& fixed,
+                    const ContactBranchOptions& o, bool nearest_zero, int count) {
   model.set_excess_angle(phi);
   NearPenalty near(model, proxy, y, o);
   EigenpairOptions eig;
-  eig.count = 1;
+  eig.count = count;
   if (nearest_zero) eig.shift = 0.0;
-  const Eigenpairs modes = lowest_eigenpairs(near.energy, y, fixed, eig);
-  *eigenvalue = modes.values[0];
-  return modes.vectors.col(0);
-}
-
-/// Minimises shell + penalty at the model's excess angle from y, rebuilding the pair set until
-/// the set built at the result is the one it was minimised with (so that the result is an
-/// equilibrium of exactly the energy a trace then continues). Returns false if that does not
-/// happen in 10 rounds or Newton fails.
-bool relax(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
-           const std::vector<Eigen::Index>& fixed, const EconeBranchOptions& o, double* energy,
-           std::string* message) {
-  for (int round = 0; round < 10; ++round) {
-    NearPenalty near(model, proxy, y, o.contact);
-    const NewtonResult r = NewtonSolver(o.relaxation).minimize(near.energy, y, fixed);
-    y = r.x;
-    if (!r.converged()) {
-      *message = "relaxation failed: " + r.message;
-      return false;
-    }
-    const ContactCandidates rebuilt =
-        near_contact_pairs(proxy, y, o.contact.contact_distance + o.contact.candidate_margin,
-                           o.contact.exclusion_radius, o.contact.selection);
-    if (same_rows(rebuilt.vertex_triangle, near.pairs.vertex_triangle) &&
-        same_rows(rebuilt.edge_edge, near.pairs.edge_edge)) {
-      *energy = r.energy;
-      return true;
-    }
-  }
-  *message = "the pair set did not settle in 10 relaxation rounds";
-  return false;
+  return lowest_eigenpairs(near.energy, y, fixed, eig);
 }
 
 void validate(const EconeBranchOptions& o) {
@@ -179,11 +147,11 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
   } else if (out.symmetric.last.sample.x.size() != model.dimension()) {
     out.skewed_message = "not searched: the symmetric branch has no converged sample";
   } else if (options.skewed_start == SkewedStart::BranchPoint && out.stability_loss &&
-      out.stability_loss->kind == SpecialPoint::Kind::BranchPoint) {
+             out.stability_loss->kind == SpecialPoint::Kind::BranchPoint) {
     const SpecialPoint& bp = *out.stability_loss;
-    double lambda = 0.0;
-    const Eigen::VectorXd mode =
-        mode_at(model, proxy, bp.x, bp.parameter, fixed_dofs, o, true, &lambda);
+    const Eigenpairs critical = modes_at(model, proxy, bp.x, bp.parameter, fixed_dofs, o, true, 1);
+    const double lambda = critical.values[0];
+    const Eigen::VectorXd mode = critical.vectors.col(0);
     out.skewed_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
     std::ostringstream m;
     m << "entered at the branch point phi_e = " << bp.parameter
@@ -200,9 +168,10 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
                                          on_skewed_sample(up_energy), on_skewed_special);
   } else {
     const BranchSample top = out.symmetric.last.sample;
-    double lambda = 0.0;
-    const Eigen::VectorXd mode =
-        mode_at(model, proxy, top.x, top.parameter, fixed_dofs, o, false, &lambda);
+    // The lowest modes: the skew is not always the lowest (a nearly free orientation mode of
+    // the fold pattern can lie below it), so every negative mode among the lowest three, or
+    // the lowest if none is negative, is tried in both directions.
+    const Eigenpairs lowest = modes_at(model, proxy, top.x, top.parameter, fixed_dofs, o, false, 3);
     model.set_excess_angle(top.parameter);
     {
       NearPenalty near(model, proxy, top.x, o);
@@ -211,25 +180,31 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     double best_energy = out.symmetric_top_energy;
     Eigen::VectorXd best;
     std::ostringstream m;
-    m << "lowest eigenvalue " << lambda << " at phi_e = " << top.parameter << ";";
-    for (const int sign : {1, -1}) {
-      Eigen::VectorXd y =
-          top.x + sign * (options.push * h_c / mode.cwiseAbs().maxCoeff()) * mode;
-      double energy = 0.0;
-      std::string why;
-      if (!relax(model, proxy, y, fixed_dofs, options, &energy, &why)) {
-        m << " push " << sign << ": " << why << ";";
-        continue;
-      }
-      SelfIntersectionOptions si;
-      si.exclusion_radius = o.exclusion_radius;
-      const bool crossed = find_self_intersection(model, y, si).intersects;
-      m << " push " << sign << ": energy " << energy << " (symmetric "
-        << out.symmetric_top_energy << ")" << (crossed ? ", passes through itself" : "") << ";";
-      if (!crossed &&
-          energy < best_energy - options.energy_margin * std::abs(out.symmetric_top_energy)) {
-        best_energy = energy;
-        best = y;
+    m << "lowest eigenvalues at phi_e = " << top.parameter << ":";
+    for (Eigen::Index k = 0; k < lowest.values.size(); ++k) m << ' ' << lowest.values[k];
+    m << ";";
+    for (Eigen::Index k = 0; k < lowest.values.size(); ++k) {
+      if (k > 0 && !(lowest.values[k] < 0.0)) break;
+      const Eigen::VectorXd mode = lowest.vectors.col(k);
+      for (const int sign : {1, -1}) {
+        Eigen::VectorXd y = top.x + sign * (options.push * h_c / mode.cwiseAbs().maxCoeff()) * mode;
+        double energy = 0.0;
+        std::string why;
+        if (!relax_with_contact(model, proxy, y, fixed_dofs, o, options.relaxation, &energy,
+                                &why)) {
+          m << " mode " << k << " push " << sign << ": " << why << ";";
+          continue;
+        }
+        SelfIntersectionOptions si;
+        si.exclusion_radius = o.exclusion_radius;
+        const bool crossed = find_self_intersection(model, y, si).intersects;
+        m << " mode " << k << " push " << sign << ": energy " << energy << " (symmetric "
+          << out.symmetric_top_energy << ")" << (crossed ? ", passes through itself" : "") << ";";
+        if (!crossed &&
+            energy < best_energy - options.energy_margin * std::abs(out.symmetric_top_energy)) {
+          best_energy = energy;
+          best = y;
+        }
       }
     }
     out.skewed_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
@@ -266,8 +241,9 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
         out.crossings.push_back(c);
       }
     }
-    std::sort(out.crossings.begin(), out.crossings.end(),
-              [](const EnergyCrossing& a, const EnergyCrossing& b) { return a.parameter < b.parameter; });
+    std::sort(
+        out.crossings.begin(), out.crossings.end(),
+        [](const EnergyCrossing& a, const EnergyCrossing& b) { return a.parameter < b.parameter; });
   }
   return out;
 }

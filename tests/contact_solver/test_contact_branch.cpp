@@ -10,6 +10,8 @@
 //  - penalty and Ipopt agree as the stiffness grows (state difference ~ 1/k);
 //  - trace_econe_branches: first contact, the symmetric branch's stability loss, a lower
 //    skewed state found and followed;
+//  - grow_with_contact: every state through contact a strict minimum (reduced Lagrangian count
+//    0), no pair closer than h - h/20;
 //  - bad options are rejected naming the field.
 //
 // Scene: a coarse graded disc (8 rings, R = 1 m, h = 0.06 m, Y = 1e4 Pa, nu = 0.3) grown on
@@ -30,6 +32,7 @@
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_stability.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -301,6 +304,41 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
     }
   }
   EXPECT_GT(skewed, 3);
+}
+
+// grow_with_contact: natural steps through first contact, each a strict minimum of shell +
+// penalty. Checked independently: the reduced Lagrangian Hessian of every contact state has no
+// negative eigenvalue, and no vertex-triangle pair is closer than h - h/20.
+TEST(ContactGrowth, StepsThroughContactAreStableAndKeepTheThickness) {
+  GrownDisc& d = disc();
+  ContactGrowthOptions o;
+  o.contact = d.options();
+  o.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
+  o.newton.max_iterations = 200;
+  o.max_step = 0.2;
+  std::vector<ContactGrowthPoint> points;
+  const ContactGrowthResult r = grow_with_contact(
+      d.model, d.proxy, d.start(), GrownDisc::kStart, 6.4, d.pinned, o,
+      [&](const ContactGrowthPoint& p) { points.push_back(p); });
+  EXPECT_TRUE(r.reached_target) << r.message;
+  ASSERT_FALSE(points.empty());
+  EXPECT_NEAR(points.back().sample.sample.parameter, 6.4, 1e-12);
+  int touching = 0;
+  for (const ContactGrowthPoint& p : points) {
+    const ContactBranchSample& s = p.sample;
+    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH - kH / 20,
+                                                       o.contact.exclusion_radius,
+                                                       NearPairSelection{false, false});
+    EXPECT_TRUE(close.empty()) << "at phi_e = " << s.sample.parameter;
+    if (s.active_pairs == 0) continue;
+    ++touching;
+    d.model.set_excess_angle(s.sample.parameter);
+    ContactGapConstraints gaps(d.proxy, s.pairs, kH, d.model.dimension());
+    const ReducedInertia reduced =
+        contact_constrained_inertia(d.model, gaps, s.sample.x, s.forces, 0.0, d.pinned);
+    EXPECT_EQ(reduced.negative, 0) << "at phi_e = " << s.sample.parameter;
+  }
+  EXPECT_GT(touching, 0) << "no contact below phi_e = 6.4";
 }
 
 TEST(ContactBranch, BadOptionsAreRejectedByName) {

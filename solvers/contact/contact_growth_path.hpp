@@ -1,0 +1,73 @@
+#pragma once
+/// \file
+/// Following stable states of a growing shell with self-contact in natural steps of the excess
+/// angle: every step minimises shell + contact penalty from the previous state, with the pair
+/// set rebuilt until it settles, and a state that is not a minimum (a saddle) is pushed along
+/// its lowest mode and minimised again. Where a stable branch ends at a fold the path drops onto
+/// whatever stable state lies below, as a slowly grown sheet would; this is how the wound-up
+/// shapes beyond the skewed cone's fold are reached.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "libshell/assembly/shell_model.hpp"
+#include "libshell/contact/contact_proxy.hpp"
+#include "solvers/contact/contact_branch.hpp"
+#include "solvers/newton/newton_solver.hpp"
+
+namespace growshell {
+
+/// Minimises shell + penalty (pairs of options: near y within contact_distance +
+/// candidate_margin, stiffness, selection) at the model's current excess angle from y, with
+/// `fixed_dofs` held, rebuilding the pair set until the set built at the result is the one it
+/// was minimised with, so that the result is an equilibrium of exactly the penalised energy of
+/// its own near pairs. On success y is the minimiser and `energy` its E + P (J); returns
+/// false (y the last iterate, `message` why) if Newton fails or the set does not settle in
+/// max_rounds.
+bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
+                        const std::vector<Eigen::Index>& fixed_dofs,
+                        const ContactBranchOptions& options, const NewtonOptions& newton,
+                        double* energy, std::string* message, int max_rounds = 10);
+
+/// Settings of grow_with_contact.
+struct ContactGrowthOptions {
+  ContactBranchOptions contact;  ///< distances, stiffness and pair selection (step fields unused)
+  NewtonOptions newton;          ///< the minimisation of every step
+  double max_step = 0.05;        ///< largest step in phi_e (rad)
+  double min_step = 1e-3;        ///< a step failing below this ends the path
+  /// Pushes along the lowest mode (h/2 at its largest entry) before a saddle counts as a
+  /// failed step.
+  int max_saddle_escapes = 3;
+};
+
+/// One accepted (stable) state of the path.
+struct ContactGrowthPoint {
+  ContactBranchSample sample;  ///< state, energies, forces, pairs (negative count 0)
+  int saddle_escapes = 0;
+  /// The minimisation from the previous state ended on a saddle and had to be pushed off it:
+  /// the previous stable branch ended, and the path jumped to another stable state.
+  bool jumped = false;
+};
+
+/// Outcome of grow_with_contact; `last` always holds the last accepted point.
+struct ContactGrowthResult {
+  bool reached_target = false;
+  std::string message;
+  ContactGrowthPoint last;
+  int steps = 0;
+  int failed_steps = 0;
+};
+
+/// Grows from the equilibrium (or any state) x0 at phi0 towards phi_target in natural steps,
+/// accepting only strict minima of shell + penalty; each accepted point goes to on_point as
+/// soon as it is found. The model is left at the last accepted excess angle. Throws
+/// std::invalid_argument for bad options.
+ContactGrowthResult grow_with_contact(
+    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    double phi0, double phi_target, const std::vector<Eigen::Index>& fixed_dofs,
+    const ContactGrowthOptions& options,
+    const std::function<void(const ContactGrowthPoint&)>& on_point = {});
+
+}  // namespace growshell
