@@ -2,6 +2,10 @@
 """Render a growshell .vtu surface (ASCII, triangles) to a PNG with matplotlib.
 
 usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 25 --azim -60]
+                         [--contact CONTACT.vtu] [--log]
+  --contact  a contact-proxy snapshot of the same state (trace_contact's *_contact_*.vtu):
+             its points in contact are drawn in red, sized by their contact force
+  --log      colour by log10 of the field (bending energy concentrates at the apex)
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
 """
 import argparse
@@ -33,6 +37,8 @@ def main():
     parser.add_argument("--field", default="bending_density")
     parser.add_argument("--elev", type=float, default=25.0)
     parser.add_argument("--azim", type=float, default=-60.0)
+    parser.add_argument("--contact")
+    parser.add_argument("--log", action="store_true")
     args = parser.parse_args()
     text = open(args.input).read()
     points = read_array(text, components=3).reshape(-1, 3)
@@ -40,15 +46,28 @@ def main():
     values = read_array(text, name=args.field)
     fig = plt.figure(figsize=(7, 6))
     ax = fig.add_subplot(111, projection="3d")
+    if args.log:
+        values = np.log10(np.maximum(values, values[values > 0].min() if (values > 0).any() else 1e-300))
     colors = plt.cm.viridis((values - values.min()) / max(np.ptp(values), 1e-300))
-    poly = Poly3DCollection(points[cells], facecolors=colors, edgecolors="none")
+    poly = Poly3DCollection(points[cells], facecolors=colors, edgecolors="none", alpha=0.85)
     ax.add_collection3d(poly)
+    if args.contact:
+        ctext = open(args.contact).read()
+        cpoints = read_array(ctext, components=3).reshape(-1, 3)
+        force = read_array(ctext, name="contact_force")
+        touching = force > 0
+        if touching.any():
+            size = 4 + 40 * force[touching] / force[touching].max()
+            ax.scatter(cpoints[touching, 0], cpoints[touching, 1], cpoints[touching, 2], s=size,
+                       c="red", depthshade=False, label="in contact")
+            ax.legend(loc="upper right")
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre, half = (lo + hi) / 2, (hi - lo).max() / 2
     for axis, c in zip("xyz", centre):
         getattr(ax, "set_%slim" % axis)(c - half, c + half)
     ax.view_init(elev=args.elev, azim=args.azim)
-    ax.set_title("%s (%s)" % (args.input.split("/")[-1], args.field))
+    ax.set_title("%s (%s%s)" % (args.input.split("/")[-1], "log10 " if args.log else "",
+                                 args.field))
     fig.savefig(args.output, dpi=90)
 
 
