@@ -69,6 +69,8 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --margin M              pairs within h + M enter a segment's penalty (default h)
   --max-step S            largest arclength step (default 0.05)
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
+  --grow-from STATE        only stage 5: grow on from a saved stable state of an earlier run
+                          (e.g. DIR/states_skewed/point_NNNNN.txt) up to --phi-wind
   --skewed 0              trace the symmetric branch only
   --skew-from WHERE       top (default): relax the last symmetric state (at --phi-max) pushed
                           along its lowest mode and follow what it finds down and up;
@@ -121,6 +123,7 @@ int run(int argc, char** argv) {
   const double tolerance = cl.number("--tolerance", 1e-6);
   const bool skewed = cl.integer("--skewed", 1) != 0;
   const std::string skew_from = cl.text("--skew-from", "top");
+  const std::string grow_from = cl.text("--grow-from", "");
   const std::string out_dir = cl.text("--out", "out/contact");
   cl.reject_unknown();
   validate_scene(scene);
@@ -154,6 +157,8 @@ int run(int argc, char** argv) {
       spacing, stiffness);
   const auto wall_start = Clock::now();
 
+  if (!grow_from.empty() && !(phi_wind > 0.0))
+    throw std::invalid_argument("--grow-from needs --phi-wind P > 0");
   // 1. Contact-free growth to the start of the contact trace.
   Eigen::VectorXd x;
   double phi = 0.0;
@@ -162,11 +167,12 @@ int run(int argc, char** argv) {
   // The traces start from these states and their corrector tests the force, so the decrement
   // test (which stops Newton's crawl along the nearly free orientation mode) is kept tight.
   newton_options.decrement_tolerance = 1e-9 * Y * h * h * h;
-  if (!start_file.empty()) {
-    const BranchSample s = examples::load_point(start_file, model.dimension());
+  if (!start_file.empty() || !grow_from.empty()) {
+    const std::string file = grow_from.empty() ? start_file : grow_from;
+    const BranchSample s = examples::load_point(file, model.dimension());
     x = s.x;
     phi = s.parameter;
-    std::printf("# start: %s at phi_e = %.6f\n", start_file.c_str(), phi);
+    std::printf("# start: %s at phi_e = %.6f\n", file.c_str(), phi);
   } else {
     std::mt19937 rng(scene.continuation.seed);
     const double amplitude = scene.continuation.perturbation_amplitude;
@@ -311,9 +317,15 @@ int run(int argc, char** argv) {
     add_event(e.kind, e.parameter, ", \"bracket\": " + json_number(e.bracket_width));
   };
   callbacks.on_note = [](const std::string& text) { std::printf("# %s\n", text.c_str()); };
-  const EconeBranchResult result =
-      trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
-  if (!result.stability_loss)
+  EconeBranchResult result;
+  if (grow_from.empty()) {
+    result = trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
+  } else {
+    result.skewed_found = true;
+    top_skewed = x;
+    top_skewed_phi = phi;
+  }
+  if (grow_from.empty() && !result.stability_loss)
     std::printf("# the symmetric branch stays stable up to phi_e = %.4f\n",
                 result.symmetric.last.sample.parameter);
   for (const EnergyCrossing& c : result.crossings) {
@@ -323,7 +335,7 @@ int run(int argc, char** argv) {
           << ", \"error_estimate\": " << json_number(c.error_estimate);
     add_event("energy_crossing", c.parameter, extra.str());
   }
-  if (result.skewed_found && result.crossings.empty())
+  if (grow_from.empty() && result.skewed_found && result.crossings.empty())
     std::printf("# the branches' energies do not cross in the traced range\n");
   // 5. Beyond the skewed branch's upper end: grow on, minimising at every step, so that the path
   //    drops onto whatever stable state follows (the wound-up cones), up to --phi-wind.
@@ -334,8 +346,8 @@ int run(int argc, char** argv) {
     growth.contact = options;
     growth.newton = branches.relaxation;
     growth.max_step = 0.05;
-    std::printf("# growing from the stable skewed state at phi_e = %.5f to %.4f\n", top_skewed_phi,
-                phi_wind);
+    std::printf("# growing from the %s state at phi_e = %.5f to %.4f\n",
+                grow_from.empty() ? "highest stable skewed" : "given", top_skewed_phi, phi_wind);
     open_branch(grown, "grown");
     const ContactGrowthResult g = grow_with_contact(
         model, proxy, top_skewed, top_skewed_phi, phi_wind, pinned, growth,

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
@@ -12,8 +14,25 @@ namespace growshell {
 
 namespace {
 
-bool same_rows(const Eigen::MatrixX2i& a, const Eigen::MatrixX2i& b) {
-  return a.rows() == b.rows() && a == b;
+/// The sorted union of two pair sets without duplicates.
+ContactCandidates merge_candidates(const ContactCandidates& a, const ContactCandidates& b) {
+  const auto merge = [](const Eigen::MatrixX2i& p, const Eigen::MatrixX2i& q) {
+    std::set<std::pair<int, int>> all;
+    for (Eigen::Index i = 0; i < p.rows(); ++i) all.insert({p(i, 0), p(i, 1)});
+    for (Eigen::Index i = 0; i < q.rows(); ++i) all.insert({q(i, 0), q(i, 1)});
+    Eigen::MatrixX2i out(static_cast<Eigen::Index>(all.size()), 2);
+    Eigen::Index row = 0;
+    for (const auto& [first, second] : all) {
+      out(row, 0) = first;
+      out(row, 1) = second;
+      ++row;
+    }
+    return out;
+  };
+  ContactCandidates out;
+  out.vertex_triangle = merge(a.vertex_triangle, b.vertex_triangle);
+  out.edge_edge = merge(a.edge_edge, b.edge_edge);
+  return out;
 }
 
 ContactCandidates near_pairs(const ContactProxy& proxy, const Eigen::VectorXd& y,
@@ -28,8 +47,10 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
                         double* energy, std::string* message, int max_rounds) {
+  ContactCandidates pairs = near_pairs(proxy, y, options);
+  std::vector<bool> is_fixed(static_cast<std::size_t>(model.dimension()), false);
+  for (const Eigen::Index i : fixed_dofs) is_fixed[static_cast<std::size_t>(i)] = true;
   for (int round = 0; round < max_rounds; ++round) {
-    const ContactCandidates pairs = near_pairs(proxy, y, options);
     ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
                            model.dimension(), options.gap);
     PenalizedEnergy total(model, penalty);
@@ -39,12 +60,32 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
       *message = "relaxation failed: " + r.message;
       return false;
     }
-    const ContactCandidates rebuilt = near_pairs(proxy, y, options);
-    if (same_rows(rebuilt.vertex_triangle, pairs.vertex_triangle) &&
-        same_rows(rebuilt.edge_edge, pairs.edge_edge)) {
+    // Settled if y is also an equilibrium (to the Newton force tolerance) of the penalty on the
+    // pairs near y itself, the energy a trace from y continues with.
+    const ContactCandidates own = near_pairs(proxy, y, options);
+    ContactPenalty own_penalty(proxy, own, options.contact_distance, options.stiffness,
+                               model.dimension(), options.gap);
+    PenalizedEnergy own_total(model, own_penalty);
+    Eigen::VectorXd g;
+    const double e = own_total.evaluate(y, &g, nullptr);
+    double free_force = 0.0;
+    for (Eigen::Index i = 0; i < g.size(); ++i)
+      if (!is_fixed[static_cast<std::size_t>(i)]) free_force = std::max(free_force, std::abs(g[i]));
+    if (free_force <= newton.gradient_tolerance) {
+      *energy = e;
+      return true;
+    }
+    // Otherwise: if the set y was minimised with covers every pair near y (a vertex near two
+    // triangles, e.g. between two layers, keeps both), y is an equilibrium of a penalty that
+    // misses no contact, and is accepted; else minimise again with the union of both sets,
+    // which only grows, so the rounds end.
+    const ContactCandidates merged = merge_candidates(pairs, own);
+    if (merged.vertex_triangle.rows() == pairs.vertex_triangle.rows() &&
+        merged.edge_edge.rows() == pairs.edge_edge.rows()) {
       *energy = r.energy;
       return true;
     }
+    pairs = merged;
   }
   *message = "the pair set did not settle in " + std::to_string(max_rounds) + " relaxation rounds";
   return false;

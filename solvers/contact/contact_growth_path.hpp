@@ -21,11 +21,14 @@ namespace growshell {
 
 /// Minimises shell + penalty (pairs of options: near y within contact_distance +
 /// candidate_margin, stiffness, selection) at the model's current excess angle from y, with
-/// `fixed_dofs` held, rebuilding the pair set until the set built at the result is the one it
-/// was minimised with, so that the result is an equilibrium of exactly the penalised energy of
-/// its own near pairs. On success y is the minimiser and `energy` its E + P (J); returns
-/// false (y the last iterate, `message` why) if Newton fails or the set does not settle in
-/// max_rounds.
+/// `fixed_dofs` held. The result must also be an equilibrium, to newton.gradient_tolerance, of
+/// the penalty on the pairs near the result itself (the energy a trace from it continues), or
+/// the set it was minimised with must contain every pair near the result (then no contact is
+/// missed; a vertex between two layers keeps a triangle on each side). Otherwise it is
+/// minimised again with the union of the old and the new pairs (the set only grows, so nearest
+/// triangles that flip back and forth cannot cycle). On success y is the minimiser and
+/// `energy` its E + P (J); returns false (y the last iterate, `message` why) if Newton fails
+/// or max_rounds pass.
 bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
