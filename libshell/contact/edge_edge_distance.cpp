@@ -14,13 +14,6 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-std::string format_point(const Vector3d& x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return s.str();
-}
-
 void require_valid_edges(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0,
                          const Vector3d& q1, const char* function) {
   const std::array<const Vector3d*, 4> points = {&p0, &p1, &q0, &q1};

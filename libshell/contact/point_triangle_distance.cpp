@@ -10,6 +10,14 @@
 #include <string>
 
 namespace growshell {
+
+std::string format_point(const Eigen::Ref<const Eigen::Vector3d>& x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  return s.str();
+}
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -20,13 +28,6 @@ Matrix3d skew(const Vector3d& x) {
   Matrix3d s;
   s << 0.0, -x.z(), x.y(), x.z(), 0.0, -x.x(), -x.y(), x.x(), 0.0;
   return s;
-}
-
-std::string format_point(const Vector3d& x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return s.str();
 }
 
 void require_finite(const Vector3d& x, const char* function, const char* name) {

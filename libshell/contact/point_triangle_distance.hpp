@@ -25,9 +25,14 @@
 /// relative rounding error ~ 1e-16 L^2 / |n| from forming n (inherent to double precision).
 
 #include <Eigen/Core>
+#include <string>
 #include <array>
 
 namespace growshell {
+
+/// "(x, y, z)" at full precision, for error messages of the distance primitives.
+std::string format_point(const Eigen::Ref<const Eigen::Vector3d>& x);
+
 
 using Vector9d = Eigen::Matrix<double, 9, 1>;
 using Matrix9d = Eigen::Matrix<double, 9, 9>;
