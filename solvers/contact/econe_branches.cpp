@@ -210,6 +210,28 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     out.skewed_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
     out.skewed_message = m.str();
     note(out.skewed_message);
+    if (best.size() > 0 && options.verify_with_ipopt) {
+      const auto t_ipopt = Clock::now();
+      model.set_excess_angle(top.parameter);
+      const ContactSolveResult check =
+          solve_contact_equilibrium(model, proxy, best, fixed_dofs, *options.verify_with_ipopt);
+      out.ipopt_checked = true;
+      out.ipopt_converged = check.converged;
+      out.ipopt_message = check.message;
+      const ShellEnergyBreakdown at_ipopt = model.energy_breakdown(check.x);
+      const ShellEnergyBreakdown at_penalty = model.energy_breakdown(best);
+      out.ipopt_energy = at_ipopt.stretching + at_ipopt.bending;
+      out.penalty_elastic_energy = at_penalty.stretching + at_penalty.bending;
+      out.ipopt_state_difference = (check.x - best).cwiseAbs().maxCoeff();
+      out.ipopt_min_distance = check.min_distance;
+      out.ipopt_seconds = std::chrono::duration<double>(Clock::now() - t_ipopt).count();
+      std::ostringstream c;
+      c << "Ipopt check of the skewed state: " << (check.converged ? "converged" : "failed")
+        << " (" << check.message << "), elastic energy " << out.ipopt_energy << " (penalty "
+        << out.penalty_elastic_energy << "), max state difference "
+        << out.ipopt_state_difference << " m, smallest distance " << check.min_distance;
+      note(c.str());
+    }
     if (best.size() > 0) {
       out.skewed_found = true;
       out.skewed_relaxed_energy = best_energy;

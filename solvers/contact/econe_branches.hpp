@@ -16,6 +16,7 @@
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_proxy.hpp"
 #include "solvers/contact/contact_branch.hpp"
+#include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/continuation/branch_crossing.hpp"
 
 namespace growshell {
@@ -59,6 +60,10 @@ struct EconeBranchOptions {
   /// Crossings closer than this to the branch point the skewed branch was entered at are the
   /// tangency of a pitchfork, not a crossing, and are dropped (radians).
   double tangency_exclusion = 1e-3;
+  /// If set, the relaxed skewed state (a minimum) is solved again with Ipopt under the hard
+  /// constraints gap >= contact distance, from the penalty state, and compared
+  /// (EconeBranchResult::ipopt_*).
+  std::optional<ContactSolveOptions> verify_with_ipopt;
 };
 
 /// Outcome of trace_econe_branches. Traces keep their last sample and message even when they
@@ -77,6 +82,15 @@ struct EconeBranchResult {
   /// Energy crossings of the two branches (E_s + E_b + P), by parameter: phi_e^crit by energy.
   std::vector<EnergyCrossing> crossings;
   double skewed_search_seconds = 0.0;
+  /// The Ipopt check of the relaxed skewed state (EconeBranchOptions::verify_with_ipopt).
+  bool ipopt_checked = false;
+  bool ipopt_converged = false;
+  std::string ipopt_message;
+  double ipopt_energy = 0.0;            ///< E_s + E_b at Ipopt's solution (J)
+  double penalty_elastic_energy = 0.0;  ///< E_s + E_b at the penalty state (J)
+  double ipopt_state_difference = 0.0;  ///< max |x_ipopt - x_penalty| (m)
+  double ipopt_min_distance = 0.0;      ///< smallest pair distance at Ipopt's solution (m)
+  double ipopt_seconds = 0.0;
 };
 
 /// Callbacks of trace_econe_branches (all optional), called as results arrive.

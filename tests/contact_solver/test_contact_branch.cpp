@@ -266,6 +266,20 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
   o.max_steps_per_branch = 40;
   o.relaxation.gradient_tolerance = 1e-5 * d.model.natural_force_scale();
   o.relaxation.max_iterations = 400;
+  // Ipopt with hard constraints on vertex-triangle and edge-edge pairs checks the skewed state.
+  ContactSolveOptions ipopt;
+  ipopt.contact_distance = kH;
+  ipopt.exclusion_radius = o.contact.exclusion_radius;
+  ipopt.candidate_margin = kH;
+  ipopt.edge_edge_pairs = true;
+  ipopt.violation_tolerance = 1e-2 * kH;
+  ipopt.minimizer.length_scale = kH;
+  ipopt.minimizer.force_scale = d.model.natural_force_scale();
+  ipopt.minimizer.tolerance = 1e-8;
+  ipopt.minimizer.constraint_violation_tolerance = 1e-6 * kH;
+  ipopt.minimizer.complementarity_tolerance = 1e-8 * d.model.natural_force_scale() * kH;
+  ipopt.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
+  o.verify_with_ipopt = ipopt;
   std::vector<std::pair<EconeBranch, ContactBranchSample>> samples;
   EconeBranchCallbacks callbacks;
   callbacks.on_sample = [&](EconeBranch b, const ContactBranchSample& s) { samples.push_back({b, s}); };
@@ -282,6 +296,14 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
   EXPECT_LE(r.stability_loss->bracket_width, 1e-6);
   ASSERT_TRUE(r.skewed_found) << r.skewed_message;
   EXPECT_LT(r.skewed_relaxed_energy, (1.0 - 1e-2) * r.symmetric_top_energy) << r.skewed_message;
+  // Under hard constraints that also keep crossing edges h apart the skewed state rises (the
+  // penalty lets edges between proxy vertices come to 0.92 h on this coarse proxy) but stays
+  // below the symmetric one: 2.681 against 2.703 J at phi_e = 6.6.
+  ASSERT_TRUE(r.ipopt_checked);
+  EXPECT_TRUE(r.ipopt_converged) << r.ipopt_message;
+  EXPECT_GE(r.ipopt_min_distance, kH - 1e-2 * kH);
+  EXPECT_GT(r.ipopt_energy, r.penalty_elastic_energy);
+  EXPECT_LT(r.ipopt_energy, r.symmetric_top_energy);
   // The skewed branch is followed from the relaxed state: it starts stable and in contact.
   int skewed = 0;
   for (const auto& [branch, s] : samples) {
