@@ -69,7 +69,7 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --margin M              pairs within h + M enter a segment's penalty (default h)
   --max-step S            largest arclength step (default 0.05)
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
-  --grow-from STATE        only stage 5: grow on from a saved stable state of an earlier run
+  --grow-from STATE       only stage 5: grow on from a saved stable state of an earlier run
                           (e.g. DIR/states_skewed/point_NNNNN.txt) up to --phi-wind
   --ipopt-check 0         skip the Ipopt check of the relaxed skewed state (hard constraints)
   --skewed 0              trace the symmetric branch only
