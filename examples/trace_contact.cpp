@@ -166,9 +166,10 @@ int run(int argc, char** argv) {
   double phi = 0.0;
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = tolerance * model.natural_force_scale();
-  // The traces start from these states and their corrector tests the force, so the decrement
-  // test (which stops Newton's crawl along the nearly free orientation mode) is kept tight.
-  newton_options.decrement_tolerance = 1e-9 * Y * h * h * h;
+  // The decrement test stops Newton's crawl along the nearly free orientation mode of the fold
+  // pattern (as in econe_at); the trace's corrector then tests the force, and if it cannot
+  // reach the tolerance from such a state the trace is retried with a looser one (below).
+  newton_options.decrement_tolerance = 1e-6 * Y * h * h * h;
   if (!start_file.empty() || !grow_from.empty()) {
     const std::string file = grow_from.empty() ? start_file : grow_from;
     const BranchSample s = examples::load_point(file, model.dimension());
@@ -338,6 +339,16 @@ int run(int argc, char** argv) {
   EconeBranchResult result;
   if (grow_from.empty()) {
     result = trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
+    // A start converged by the decrement test can sit further from equilibrium (along the
+    // nearly free orientation mode) than the corrector's force tolerance: loosen it tenfold
+    // while no sample has converged, down to 1e-4.
+    for (double t = 10.0 * tolerance; result.symmetric.steps == 0 && t <= 1e-4 * 1.0001; t *= 10.0) {
+      std::printf("# the trace could not start at tolerance %.0e (%s); retrying at %.0e\n",
+                  t / 10.0, result.symmetric.message.c_str(), t);
+      branches.contact.arclength.gradient_tolerance = t * model.natural_force_scale();
+      options.arclength.gradient_tolerance = branches.contact.arclength.gradient_tolerance;
+      result = trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
+    }
   } else {
     result.skewed_found = true;
     top_skewed = x;
