@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "examples/support/command_line.hpp"
 #include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/scene_command_line.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/contact/econe_branches.hpp"
@@ -70,15 +70,7 @@ std::string number_or_nan(double v) {
 
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  Scene base = default_scene();
-  int first_option = 1;
-  if (argc > 1 && argv[1][0] != '-') {
-    base = read_scene(argv[1]);
-    first_option = 2;
-  }
-  std::vector<char*> rest(argv + first_option, argv + argc);
-  rest.insert(rest.begin(), argv[0]);
-  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  auto [base, cl] = examples::read_scene_command_line(argc, argv);
   if (cl.help()) {
     std::fputs(kUsage, stdout);
     return 0;

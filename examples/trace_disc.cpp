@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
+#include "examples/support/scene_command_line.hpp"
 #include "libshell/analysis/core_radius.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/analysis/self_distance.hpp"
@@ -127,15 +127,7 @@ int angular_wavenumber(const ShellModel& model, const Eigen::VectorXd& mode) {
 
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  Scene scene = default_scene();
-  int first_option = 1;
-  if (argc > 1 && argv[1][0] != '-') {
-    scene = read_scene(argv[1]);
-    first_option = 2;
-  }
-  std::vector<char*> rest(argv + first_option, argv + argc);
-  rest.insert(rest.begin(), argv[0]);
-  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  auto [scene, cl] = examples::read_scene_command_line(argc, argv);
   if (cl.help()) {
     std::fputs(kUsage, stdout);
     return 0;
@@ -413,27 +405,24 @@ int run(int argc, char** argv) {
   }
   snapshot(trace.last, "last.vtu");
   // Where the time went (flat branch + cone), also written to DIR/cost.json.
-  const TraceCost& c = trace.cost;
+  TraceCost c = flat_cost;
+  c += trace.cost;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const double assembly = flat_cost.assembly_seconds + c.assembly_seconds;
-  const double factorization = flat_cost.factorization_seconds + c.factorization_seconds;
-  const double solves = flat_cost.solve_seconds + c.solve_seconds;
-  const double events_s = flat_cost.event_seconds + c.event_seconds;
-  const double output = flat_cost.callback_seconds + c.callback_seconds;
   std::printf("# cost: %.1f s wall, %d linearisations (assembly %.1f s), %d LDL^T factorisations "
               "with inertia (%.1f s), %d solves (%.1f s), events %.1f s, output %.1f s\n",
-              wall, flat_cost.linearizations + c.linearizations, assembly,
-              flat_cost.factorizations + c.factorizations, factorization,
-              flat_cost.solves + c.solves, solves, events_s, output);
+              wall, c.linearizations, c.assembly_seconds, c.factorizations,
+              c.factorization_seconds, c.solves, c.solve_seconds, c.event_seconds,
+              c.callback_seconds);
   std::ofstream(out_dir + "/cost.json")
       << std::setprecision(6) << "{\"wall_seconds\": " << wall
       << ", \"cone_steps\": " << trace.steps << ", \"failed_steps\": " << trace.failed_steps
-      << ", \"linearizations\": " << flat_cost.linearizations + c.linearizations
-      << ", \"factorizations\": " << flat_cost.factorizations + c.factorizations
-      << ", \"solves\": " << flat_cost.solves + c.solves << ", \"assembly_seconds\": " << assembly
-      << ", \"factorization_seconds\": " << factorization << ", \"solve_seconds\": " << solves
-      << ", \"event_seconds\": " << events_s << ", \"output_seconds\": " << output << "}\n";
+      << ", \"linearizations\": " << c.linearizations
+      << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
+      << ", \"assembly_seconds\": " << c.assembly_seconds
+      << ", \"factorization_seconds\": " << c.factorization_seconds
+      << ", \"solve_seconds\": " << c.solve_seconds << ", \"event_seconds\": " << c.event_seconds
+      << ", \"output_seconds\": " << c.callback_seconds << "}\n";
   std::printf("# trace ended: %s (%d steps, %d failed)\n", trace.message.c_str(), trace.steps,
               trace.failed_steps);
   std::printf("# wrote %s/branch.csv, events.json, states/, branch.pvd\n", out_dir.c_str());

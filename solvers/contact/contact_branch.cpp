@@ -26,18 +26,6 @@ double seconds_since(Clock::time_point t0) {
 /// close: the segment ends there and is retried from the last accepted sample.
 struct PairSetViolation {};
 
-void accumulate(TraceCost& sum, const TraceCost& part) {
-  sum.linearizations += part.linearizations;
-  sum.factorizations += part.factorizations;
-  sum.solves += part.solves;
-  sum.assembly_seconds += part.assembly_seconds;
-  sum.factorization_seconds += part.factorization_seconds;
-  sum.solve_seconds += part.solve_seconds;
-  sum.event_seconds += part.event_seconds;
-  sum.callback_seconds += part.callback_seconds;
-  sum.total_seconds += part.total_seconds;
-}
-
 void validate(const ContactBranchOptions& o) {
   const auto positive = [](double v, const char* name) {
     if (!(std::isfinite(v) && v > 0.0))
@@ -248,7 +236,7 @@ ContactBranchTrace trace_contact_branch(
     }
     retries = 0;
     margin = options.candidate_margin;
-    accumulate(out.cost.continuation, trace.cost);
+    out.cost.continuation += trace.cost;
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
     out.failed_steps += trace.failed_steps;

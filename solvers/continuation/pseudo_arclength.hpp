@@ -91,6 +91,20 @@ struct TraceCost {
   double event_seconds = 0.0;   ///< evaluating the event test functions
   double callback_seconds = 0.0;  ///< on_sample / on_special / on_event (the caller's output)
   double total_seconds = 0.0;
+
+  /// Adds the counts and times of another trace (e.g. of the next segment or stage).
+  TraceCost& operator+=(const TraceCost& other) {
+    linearizations += other.linearizations;
+    factorizations += other.factorizations;
+    solves += other.solves;
+    assembly_seconds += other.assembly_seconds;
+    factorization_seconds += other.factorization_seconds;
+    solve_seconds += other.solve_seconds;
+    event_seconds += other.event_seconds;
+    callback_seconds += other.callback_seconds;
+    total_seconds += other.total_seconds;
+    return *this;
+  }
 };
 
 struct BranchTrace {

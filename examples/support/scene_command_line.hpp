@@ -1,0 +1,30 @@
+#pragma once
+// The command line of the branch-tracing programs: an optional scene file first (any first
+// argument not starting with '-'; default_scene() without one), then `--name value` options.
+
+#include <vector>
+
+#include "examples/support/command_line.hpp"
+#include "libshell/io/scene.hpp"
+
+namespace growshell::examples {
+
+struct SceneCommandLine {
+  Scene scene;          ///< read from the file, or default_scene()
+  CommandLine options;  ///< the options after the scene file
+};
+
+/// Throws as read_scene (a bad file, naming the key) and CommandLine (a malformed option).
+inline SceneCommandLine read_scene_command_line(int argc, char** argv) {
+  int first_option = 1;
+  Scene scene = default_scene();
+  if (argc > 1 && argv[1][0] != '-') {
+    scene = read_scene(argv[1]);
+    first_option = 2;
+  }
+  std::vector<char*> rest(argv + first_option, argv + argc);
+  rest.insert(rest.begin(), argv[0]);
+  return {std::move(scene), CommandLine(static_cast<int>(rest.size()), rest.data())};
+}
+
+}  // namespace growshell::examples
