@@ -24,13 +24,6 @@ Eigen::MatrixX2i merge_pairs(const Eigen::MatrixX2i& a, const Eigen::MatrixX2i& 
   return out;
 }
 
-ContactCandidates merge(const ContactCandidates& a, const ContactCandidates& b) {
-  ContactCandidates out;
-  out.vertex_triangle = merge_pairs(a.vertex_triangle, b.vertex_triangle);
-  out.edge_edge = merge_pairs(a.edge_edge, b.edge_edge);
-  return out;
-}
-
 /// Pair key: (type, first, second) with type 0 = vertex-triangle, 1 = edge-edge.
 std::map<std::tuple<int, int, int>, double> force_by_pair(const ContactSolveResult& r) {
   std::map<std::tuple<int, int, int>, double> out;
@@ -44,8 +37,17 @@ std::map<std::tuple<int, int, int>, double> force_by_pair(const ContactSolveResu
   return out;
 }
 
-double smallest_distance(const ContactProxy& proxy, const ContactCandidates& pairs,
-                         const Eigen::VectorXd& x) {
+}  // namespace
+
+ContactCandidates merge_contact_pairs(const ContactCandidates& a, const ContactCandidates& b) {
+  ContactCandidates out;
+  out.vertex_triangle = merge_pairs(a.vertex_triangle, b.vertex_triangle);
+  out.edge_edge = merge_pairs(a.edge_edge, b.edge_edge);
+  return out;
+}
+
+double smallest_pair_distance(const ContactProxy& proxy, const ContactCandidates& pairs,
+                              const Eigen::Ref<const Eigen::VectorXd>& x) {
   if (pairs.empty()) return std::numeric_limits<double>::infinity();
   ContactGapOptions plain;
   plain.mollify_edge_edge = false;
@@ -55,7 +57,6 @@ double smallest_distance(const ContactProxy& proxy, const ContactCandidates& pai
   return d.minCoeff();
 }
 
-}  // namespace
 
 ContactCandidates near_contact_pairs(const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x,
                                      double distance, double exclusion_radius,
@@ -125,7 +126,7 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
   selection.edge_edge_pairs = options.edge_edge_pairs;
   selection.nearest_triangle_only = options.nearest_triangle_only;
   ContactCandidates pairs = near_contact_pairs(proxy, start, reach, options.exclusion_radius, selection);
-  if (warm) pairs = merge(pairs, warm->pairs);  // keep the contacts of the previous point
+  if (warm) pairs = merge_contact_pairs(pairs, warm->pairs);  // keep the contacts of the previous point
 
   for (int round = 1; round <= options.max_rounds; ++round) {
     out.rounds = round;
@@ -176,7 +177,7 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
     // Verify against every pair near the solution (edge-edge pairs and all triangles
     // included, whatever the selection of constrained pairs), not only the constrained ones.
     const ContactCandidates violators = near_contact_pairs(proxy, x, allowed, options.exclusion_radius);
-    out.min_distance = std::min(smallest_distance(proxy, pairs, x), smallest_distance(proxy, violators, x));
+    out.min_distance = std::min(smallest_pair_distance(proxy, pairs, x), smallest_pair_distance(proxy, violators, x));
     if (violators.empty() && out.min_distance >= allowed) {
       out.converged = true;
       out.message = out.used_contact ? "converged with contact" : "converged without contact";
@@ -190,8 +191,8 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
       return a.vertex_triangle.rows() == b.vertex_triangle.rows() && a.edge_edge.rows() == b.edge_edge.rows();
     };
     ContactCandidates next =
-        merge(pairs, near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection));
-    if (same_size(next, pairs)) next = merge(next, violators);
+        merge_contact_pairs(pairs, near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection));
+    if (same_size(next, pairs)) next = merge_contact_pairs(next, violators);
     if (same_size(next, pairs)) {
       out.message = "a constrained pair ends closer than allowed (min distance " +
                     std::to_string(out.min_distance) + " m); tighten the minimiser's tolerances";

@@ -82,6 +82,14 @@ ContactCandidates near_contact_pairs(const ContactProxy& proxy, const Eigen::Ref
                                      double distance, double exclusion_radius,
                                      const NearPairSelection& selection = {});
 
+/// The sorted union of two pair sets, without duplicates.
+ContactCandidates merge_contact_pairs(const ContactCandidates& a, const ContactCandidates& b);
+
+/// Smallest exact (unmollified) distance (m) between the primitives of `pairs` at state x;
+/// +infinity if there is no pair.
+double smallest_pair_distance(const ContactProxy& proxy, const ContactCandidates& pairs,
+                              const Eigen::Ref<const Eigen::VectorXd>& x);
+
 /// Minimises model's energy at its current excess angle from x0 (which should satisfy the
 /// gaps: Ipopt keeps the interior-point iterates feasible only from a feasible start) with
 /// `fixed_dofs` held. `warm` (optional): a previous result whose forces seed the multipliers

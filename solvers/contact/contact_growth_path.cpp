@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <stdexcept>
-#include <utility>
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
@@ -12,49 +10,23 @@
 
 namespace growshell {
 
-namespace {
-
-/// The sorted union of two pair sets without duplicates.
-ContactCandidates merge_candidates(const ContactCandidates& a, const ContactCandidates& b) {
-  const auto merge = [](const Eigen::MatrixX2i& p, const Eigen::MatrixX2i& q) {
-    std::set<std::pair<int, int>> all;
-    for (Eigen::Index i = 0; i < p.rows(); ++i) all.insert({p(i, 0), p(i, 1)});
-    for (Eigen::Index i = 0; i < q.rows(); ++i) all.insert({q(i, 0), q(i, 1)});
-    Eigen::MatrixX2i out(static_cast<Eigen::Index>(all.size()), 2);
-    Eigen::Index row = 0;
-    for (const auto& [first, second] : all) {
-      out(row, 0) = first;
-      out(row, 1) = second;
-      ++row;
-    }
-    return out;
-  };
-  ContactCandidates out;
-  out.vertex_triangle = merge(a.vertex_triangle, b.vertex_triangle);
-  out.edge_edge = merge(a.edge_edge, b.edge_edge);
-  return out;
+ContactCandidates near_penalty_pairs(const ContactProxy& proxy,
+                                     const Eigen::Ref<const Eigen::VectorXd>& y,
+                                     const ContactBranchOptions& options) {
+  return near_contact_pairs(proxy, y, options.contact_distance + options.candidate_margin,
+                            options.exclusion_radius, options.selection);
 }
-
-ContactCandidates near_pairs(const ContactProxy& proxy, const Eigen::VectorXd& y,
-                             const ContactBranchOptions& o) {
-  return near_contact_pairs(proxy, y, o.contact_distance + o.candidate_margin, o.exclusion_radius,
-                            o.selection);
-}
-
-}  // namespace
 
 bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
                         double* energy, std::string* message, int max_rounds) {
-  ContactCandidates pairs = near_pairs(proxy, y, options);
+  ContactCandidates pairs = near_penalty_pairs(proxy, y, options);
   std::vector<bool> is_fixed(static_cast<std::size_t>(model.dimension()), false);
   for (const Eigen::Index i : fixed_dofs) is_fixed[static_cast<std::size_t>(i)] = true;
   for (int round = 0; round < max_rounds; ++round) {
-    ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
-                           model.dimension(), options.gap);
-    PenalizedEnergy total(model, penalty);
-    const NewtonResult r = NewtonSolver(newton).minimize(total, y, fixed_dofs);
+    PenalizedShell total(model, proxy, pairs, options);
+    const NewtonResult r = NewtonSolver(newton).minimize(total.energy, y, fixed_dofs);
     y = r.x;
     if (!r.converged()) {
       *message = "relaxation failed: " + r.message;
@@ -62,12 +34,9 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     }
     // Settled if y is also an equilibrium (to the Newton force tolerance) of the penalty on the
     // pairs near y itself, the energy a trace from y continues with.
-    const ContactCandidates own = near_pairs(proxy, y, options);
-    ContactPenalty own_penalty(proxy, own, options.contact_distance, options.stiffness,
-                               model.dimension(), options.gap);
-    PenalizedEnergy own_total(model, own_penalty);
+    PenalizedShell own(model, proxy, near_penalty_pairs(proxy, y, options), options);
     Eigen::VectorXd g;
-    const double e = own_total.evaluate(y, &g, nullptr);
+    const double e = own.energy.evaluate(y, &g, nullptr);
     double free_force = 0.0;
     for (Eigen::Index i = 0; i < g.size(); ++i)
       if (!is_fixed[static_cast<std::size_t>(i)]) free_force = std::max(free_force, std::abs(g[i]));
@@ -79,7 +48,7 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     // triangles, e.g. between two layers, keeps both), y is an equilibrium of a penalty that
     // misses no contact, and is accepted; else minimise again with the union of both sets,
     // which only grows, so the rounds end.
-    const ContactCandidates merged = merge_candidates(pairs, own);
+    const ContactCandidates merged = merge_contact_pairs(pairs, own.pairs);
     if (merged.vertex_triangle.rows() == pairs.vertex_triangle.rows() &&
         merged.edge_edge.rows() == pairs.edge_edge.rows()) {
       *energy = r.energy;
@@ -120,13 +89,10 @@ ContactGrowthResult grow_with_contact(
     for (; escapes <= options.max_saddle_escapes; ++escapes) {
       if (!relax_with_contact(model, proxy, y, fixed_dofs, o, options.newton, &energy, &why)) break;
       // A strict minimum? The lowest eigenvalue of the penalised Hessian at the result.
-      const ContactCandidates pairs = near_pairs(proxy, y, o);
-      ContactPenalty penalty(proxy, pairs, o.contact_distance, o.stiffness, model.dimension(),
-                             o.gap);
-      PenalizedEnergy total(model, penalty);
+      PenalizedShell total(model, proxy, near_penalty_pairs(proxy, y, o), o);
       EigenpairOptions eig;
       eig.count = 1;
-      const Eigenpairs lowest = lowest_eigenpairs(total, y, fixed_dofs, eig);
+      const Eigenpairs lowest = lowest_eigenpairs(total.energy, y, fixed_dofs, eig);
       if (lowest.values[0] > 0.0) {
         accepted = true;
         break;
@@ -156,7 +122,7 @@ ContactGrowthResult grow_with_contact(
     s.tangent_state = Eigen::VectorXd::Zero(x.size());
     s.tangent_parameter = direction;
     ContactGrowthPoint point;
-    point.sample = describe_contact_sample(model, proxy, s, near_pairs(proxy, x, o), o);
+    point.sample = describe_contact_sample(model, proxy, s, near_penalty_pairs(proxy, x, o), o);
     point.saddle_escapes = escapes;
     point.jumped = escapes > 0;
     out.last = point;

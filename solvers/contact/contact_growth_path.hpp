@@ -10,14 +10,39 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libshell/assembly/shell_model.hpp"
+#include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/newton/newton_solver.hpp"
 
 namespace growshell {
+
+/// The pairs near y that the penalty of `options` acts on: within contact_distance +
+/// candidate_margin, chosen by options.selection (as a trace's segment builds them).
+ContactCandidates near_penalty_pairs(const ContactProxy& proxy,
+                                     const Eigen::Ref<const Eigen::VectorXd>& y,
+                                     const ContactBranchOptions& options);
+
+/// Shell + contact penalty (stiffness, contact distance of `options`) on a fixed pair set: the
+/// objective that relaxations minimise. Not copyable or movable (the energy refers to the
+/// penalty member).
+struct PenalizedShell {
+  ContactCandidates pairs;
+  ContactPenalty penalty;
+  PenalizedEnergy energy;
+  PenalizedShell(ShellModel& model, const ContactProxy& proxy, ContactCandidates pair_set,
+                 const ContactBranchOptions& options)
+      : pairs(std::move(pair_set)),
+        penalty(proxy, pairs, options.contact_distance, options.stiffness, model.dimension(),
+                options.gap),
+        energy(model, penalty) {}
+  PenalizedShell(const PenalizedShell&) = delete;
+  PenalizedShell& operator=(const PenalizedShell&) = delete;
+};
 
 /// Minimises shell + penalty (pairs of options: near y within contact_distance +
 /// candidate_margin, stiffness, selection) at the model's current excess angle from y, with

@@ -23,26 +23,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The penalised energy of the pairs near y, with its pair set.
-struct NearPenalty {
-  ContactCandidates pairs;
-  ContactPenalty penalty;
-  PenalizedEnergy energy;
-  NearPenalty(ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
-              const ContactBranchOptions& o)
-      : pairs(near_contact_pairs(proxy, y, o.contact_distance + o.candidate_margin,
-                                 o.exclusion_radius, o.selection)),
-        penalty(proxy, pairs, o.contact_distance, o.stiffness, model.dimension(), o.gap),
-        energy(model, penalty) {}
-};
-
 /// The `count` eigenpairs of the penalised Hessian at (y, phi) nearest zero (nearest_zero) or
 /// lowest.
 Eigenpairs modes_at(ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
                     double phi, const std::vector<Eigen::Index>& fixed,
                     const ContactBranchOptions& o, bool nearest_zero, int count) {
   model.set_excess_angle(phi);
-  NearPenalty near(model, proxy, y, o);
+  PenalizedShell near(model, proxy, near_penalty_pairs(proxy, y, o), o);
   EigenpairOptions eig;
   eig.count = count;
   if (nearest_zero) eig.shift = 0.0;
@@ -87,11 +74,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     const ContactCandidates near =
         near_contact_pairs(proxy, s.x, 2.0 * h_c, o.exclusion_radius, o.selection);
     if (near.empty()) return h_c;
-    ContactGapConstraints gaps(proxy, near, h_c, model.dimension(), o.gap);
-    double d = 2.0 * h_c;
-    for (Eigen::Index k = 0; k < gaps.count(); ++k)
-      d = std::min(d, gaps.pair_geometry(s.x, k).distance);
-    return d - h_c;
+    return std::min(2.0 * h_c, smallest_pair_distance(proxy, near, s.x)) - h_c;
   };
   std::vector<BranchEnergySample> symmetric_energy, down_energy, up_energy;
   const auto energy_of = [](const ContactBranchSample& s) {
@@ -174,7 +157,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     const Eigenpairs lowest = modes_at(model, proxy, top.x, top.parameter, fixed_dofs, o, false, 3);
     model.set_excess_angle(top.parameter);
     {
-      NearPenalty near(model, proxy, top.x, o);
+      PenalizedShell near(model, proxy, near_penalty_pairs(proxy, top.x, o), o);
       out.symmetric_top_energy = near.energy.evaluate(top.x, nullptr, nullptr);
     }
     double best_energy = out.symmetric_top_energy;
@@ -226,10 +209,10 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       out.ipopt_min_distance = check.min_distance;
       out.ipopt_seconds = std::chrono::duration<double>(Clock::now() - t_ipopt).count();
       std::ostringstream c;
-      c << "Ipopt check of the skewed state: " << (check.converged ? "converged" : "failed")
-        << " (" << check.message << "), elastic energy " << out.ipopt_energy << " (penalty "
-        << out.penalty_elastic_energy << "), max state difference "
-        << out.ipopt_state_difference << " m, smallest distance " << check.min_distance;
+      c << "Ipopt check of the skewed state: " << (check.converged ? "converged" : "failed") << " ("
+        << check.message << "), elastic energy " << out.ipopt_energy << " (penalty "
+        << out.penalty_elastic_energy << "), max state difference " << out.ipopt_state_difference
+        << " m, smallest distance " << check.min_distance;
       note(c.str());
     }
     if (best.size() > 0) {
