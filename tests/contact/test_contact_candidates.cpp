@@ -17,19 +17,14 @@
 
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test_support::map_reference;
 
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-    x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
-}
+constexpr double kPi = 3.14159265358979323846;
 
 /// The unit disc rolled onto a cylinder of radius 0.25..0.6 (it wraps up to 1.3 times, so far
 /// parts pass close to or through each other), with smooth random waves and a random rotation.

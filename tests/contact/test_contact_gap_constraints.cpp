@@ -19,39 +19,16 @@
 
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "support/dense_symmetric.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
+using test_support::dense_symmetric;
+using test_support::folded_sheet;
+
 constexpr double kPi = 3.14159265358979323846;
-
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-    x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
-}
-
-/// The sheet folded about the line X = x0: the part X > x0 runs over a half cylinder of radius
-/// rho and comes back, mirrored in x, as a flat layer at z = 2 rho over the part X < x0.
-/// `wobble` adds a smooth, generic displacement (no symmetry, so no ties between regions).
-Eigen::VectorXd folded(const ShellModel& model, double x0, double rho, double wobble) {
-  return map_reference(model, [=](const Eigen::Vector3d& X) {
-    const double s = X.x() - x0;
-    Eigen::Vector3d p;
-    if (s <= 0.0)
-      p = Eigen::Vector3d(X.x(), X.y(), 0.0);
-    else if (s < kPi * rho)
-      p = Eigen::Vector3d(x0 + rho * std::sin(s / rho), X.y(), rho * (1.0 - std::cos(s / rho)));
-    else
-      p = Eigen::Vector3d(x0 - (s - kPi * rho), X.y(), 2.0 * rho);
-    p += wobble * Eigen::Vector3d(std::sin(2.1 * X.x() + 1.3 * X.y() + 0.4),
-                                  std::sin(1.7 * X.y() - 0.9 * X.x() + 1.1),
-                                  std::cos(2.9 * X.x() + 0.6 * X.x() * X.y() + 0.2));
-    return p;
-  });
-}
 
 /// A proxy whose map is the identity: the unknowns are the points themselves (3 i + c).
 ContactProxy identity_proxy(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles,
@@ -70,13 +47,6 @@ Eigen::VectorXd flatten(const Eigen::MatrixX3d& points) {
   Eigen::VectorXd x(3 * points.rows());
   for (Eigen::Index i = 0; i < points.rows(); ++i) x.segment<3>(3 * i) = points.row(i).transpose();
   return x;
-}
-
-Eigen::MatrixXd dense_symmetric(const Eigen::SparseMatrix<double>& upper) {
-  const Eigen::MatrixXd u = Eigen::MatrixXd(upper);
-  Eigen::MatrixXd full = u + u.transpose();
-  full.diagonal() = u.diagonal();
-  return full;
 }
 
 /// The folded-disc scene shared by the tests: a 5-ring unit disc (proxy spacing about 0.12 m)
@@ -98,7 +68,7 @@ struct FoldedScene {
               }()),
               ShellModelSettings{}),
         proxy(make_contact_proxy(model, segments_per_edge)),
-        x(folded(model, 0.0, kRho, wobble)) {
+        x(folded_sheet(model, 0.0, kRho, wobble)) {
     ContactCandidateOptions options;
     options.query_distance = 0.12;
     options.exclusion_radius = 0.2;
@@ -592,7 +562,7 @@ TEST(ContactGapConstraints, InterpenetratedFoldedDiscStaysFinite) {
   // The upper layer pressed into the lower one (fold radius 0, wobble-free): the mid-surfaces
   // coincide and many pairs have distance exactly 0.
   const FoldedScene scene(0.02, 1);
-  const Eigen::VectorXd x = folded(scene.model, 0.0, 0.0, 0.0);
+  const Eigen::VectorXd x = folded_sheet(scene.model, 0.0, 0.0, 0.0);
   ContactCandidateOptions options;
   options.query_distance = 0.05;
   options.exclusion_radius = 0.2;

@@ -18,45 +18,15 @@
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
+#include "support/dense_symmetric.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test_support::dense_symmetric;
+using test_support::folded_sheet;
 
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-    x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
-}
-
-/// The sheet folded about X = x0 over a half cylinder of radius rho (the part X > x0 comes
-/// back, mirrored, as a layer at z = 2 rho), with a smooth generic displacement `wobble`.
-Eigen::VectorXd folded(const ShellModel& model, double x0, double rho, double wobble) {
-  return map_reference(model, [=](const Eigen::Vector3d& X) {
-    const double s = X.x() - x0;
-    Eigen::Vector3d p;
-    if (s <= 0.0)
-      p = Eigen::Vector3d(X.x(), X.y(), 0.0);
-    else if (s < kPi * rho)
-      p = Eigen::Vector3d(x0 + rho * std::sin(s / rho), X.y(), rho * (1.0 - std::cos(s / rho)));
-    else
-      p = Eigen::Vector3d(x0 - (s - kPi * rho), X.y(), 2.0 * rho);
-    p += wobble * Eigen::Vector3d(std::sin(2.1 * X.x() + 1.3 * X.y() + 0.4),
-                                  std::sin(1.7 * X.y() - 0.9 * X.x() + 1.1),
-                                  std::cos(2.9 * X.x() + 0.6 * X.x() * X.y() + 0.2));
-    return p;
-  });
-}
-
-Eigen::MatrixXd dense_symmetric(const Eigen::SparseMatrix<double>& upper) {
-  const Eigen::MatrixXd u = Eigen::MatrixXd(upper);
-  Eigen::MatrixXd full = u + u.transpose();
-  full.diagonal() = u.diagonal();
-  return full;
-}
 
 /// 5-ring unit disc folded about X = 0 with the layers 0.08 m apart (proxy spacing ~0.12 m).
 struct FoldedScene {
@@ -74,7 +44,7 @@ struct FoldedScene {
               }()),
               ShellModelSettings{}),
         proxy(make_contact_proxy(model, segments_per_edge)),
-        x(folded(model, 0.0, kRho, wobble)) {
+        x(folded_sheet(model, 0.0, kRho, wobble)) {
     ContactCandidateOptions options;
     options.query_distance = 0.12;
     options.exclusion_radius = 0.2;

@@ -16,19 +16,14 @@
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
-/// Applies f to every control point of the reference (vertex-major flat vector).
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-    x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
-}
+using test_support::map_reference;
 
+/// Applies f to every control point of the reference (vertex-major flat vector).
 /// Control points as one row per vertex, for evaluate_limit_surface.
 Eigen::MatrixX3d as_rows(const Eigen::VectorXd& x) {
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;

@@ -38,9 +38,12 @@
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_zones.hpp"
 #include "solvers/newton/newton_solver.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::folded_sheet;
 
 constexpr double kPi = 3.14159265358979323846;
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -420,29 +423,6 @@ TEST(ContactEquilibrium, WarmRestartAtTheSolutionStaysThere) {
 // (4) near_contact_pairs returns exactly the pairs whose exact distance is below the query
 // distance: compared with every pair of the brute-force broad phase, measured one by one.
 
-/// The sheet folded about the line X = 0 (as in tests/contact): the part X > 0 runs over a
-/// half cylinder of radius rho and comes back, mirrored in x, as a layer at z = 2 rho; a
-/// smooth generic wobble breaks all symmetry, so pairs meet at every angle.
-Eigen::VectorXd folded_disc(const ShellModel& model, double rho, double wobble) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
-    const Eigen::Vector3d X = x.segment<3>(3 * v);
-    const double s = X.x();
-    Eigen::Vector3d p;
-    if (s <= 0.0)
-      p = Eigen::Vector3d(X.x(), X.y(), 0.0);
-    else if (s < kPi * rho)
-      p = Eigen::Vector3d(rho * std::sin(s / rho), X.y(), rho * (1.0 - std::cos(s / rho)));
-    else
-      p = Eigen::Vector3d(-(s - kPi * rho), X.y(), 2.0 * rho);
-    p += wobble * Eigen::Vector3d(std::sin(2.1 * X.x() + 1.3 * X.y() + 0.4),
-                                  std::sin(1.7 * X.y() - 0.9 * X.x() + 1.1),
-                                  std::cos(2.9 * X.x() + 0.6 * X.x() * X.y() + 0.2));
-    x.segment<3>(3 * v) = p;
-  }
-  return x;
-}
-
 /// Reference answer: brute-force candidates at query distance `distance`, kept if their exact
 /// (unmollified) distance is below it; with `nearest`, per vertex only the nearest triangle
 /// (the first in index order among equals); edge-edge pairs only if `edges`.
@@ -508,7 +488,7 @@ TEST(NearContactPairs, ExactlyThePairsCloserThanTheDistance) {
   const ContactProxy proxy = make_contact_proxy(model, 2);
   // Layers 0.08 m apart, wobble 0.01 m: distances between the layers spread over about
   // 0.06 .. 0.1 m, so a query at 0.09 m cuts through the middle of them.
-  const Eigen::VectorXd x = folded_disc(model, 0.04, 0.01);
+  const Eigen::VectorXd x = folded_sheet(model, 0.0, 0.04, 0.01);
   const double r_ex = 0.2;
   for (const double distance : {0.09, 0.12}) {
     Eigen::Index candidates = 0;

@@ -30,39 +30,17 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_stability.hpp"
+#include "support/dense_symmetric.hpp"
+#include "support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
+using test_support::dense_symmetric;
+using test_support::folded_sheet;
+
 constexpr double kPi = 3.14159265358979323846;
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-
-Eigen::MatrixXd dense_symmetric(const Eigen::SparseMatrix<double>& upper) {
-  const Eigen::MatrixXd u = Eigen::MatrixXd(upper);
-  Eigen::MatrixXd full = u + u.transpose();
-  full.diagonal() = u.diagonal();
-  return full;
-}
-
-Eigen::VectorXd folded_disc(const ShellModel& model, double rho, double wobble) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
-    const Eigen::Vector3d X = x.segment<3>(3 * v);
-    const double s = X.x();
-    Eigen::Vector3d p;
-    if (s <= 0.0)
-      p = Eigen::Vector3d(X.x(), X.y(), 0.0);
-    else if (s < kPi * rho)
-      p = Eigen::Vector3d(rho * std::sin(s / rho), X.y(), rho * (1.0 - std::cos(s / rho)));
-    else
-      p = Eigen::Vector3d(-(s - kPi * rho), X.y(), 2.0 * rho);
-    p += wobble * Eigen::Vector3d(std::sin(2.1 * X.x() + 1.3 * X.y() + 0.4),
-                                  std::sin(1.7 * X.y() - 0.9 * X.x() + 1.1),
-                                  std::cos(2.9 * X.x() + 0.6 * X.x() * X.y() + 0.2));
-    x.segment<3>(3 * v) = p;
-  }
-  return x;
-}
 
 struct FoldedDisc {
   ShellModel model;
@@ -78,7 +56,7 @@ struct FoldedDisc {
               }()),
               ShellModelSettings{}),
         proxy(make_contact_proxy(model, 1)),
-        x(folded_disc(model, 0.04, 0.01)) {
+        x(folded_sheet(model, 0.0, 0.04, 0.01)) {
     const Eigen::VectorXd reference = model.reference_positions();
     for (Eigen::Index d = 0; d < reference.size(); ++d) {
       (reference(3 * (d / 3)) < -0.5 ? fixed : free).push_back(d);

@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "solvers/newton/sparse_objective.hpp"
+#include "support/dense_symmetric.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::dense_symmetric;
 
 // Base for toy objectives coupling neighbours of a chain: upper-triangular tridiagonal
 // pattern, with helpers that write the values in place.
@@ -36,13 +39,6 @@ class ChainObjective : public SparseObjective {
 };
 
 // Dense symmetric matrix from an upper triangle, for eigenvalue checks.
-Eigen::MatrixXd dense_symmetric(const Eigen::SparseMatrix<double>& upper) {
-  const Eigen::MatrixXd u = Eigen::MatrixXd(upper);
-  Eigen::MatrixXd full = u + u.transpose();
-  full.diagonal() = u.diagonal();
-  return full;
-}
-
 // f = 1/2 x^T A x - b^T x with A = tridiag(-1, 4, -1) (eigenvalues in [2, 6]).
 class Quadratic : public ChainObjective {
  public:
