@@ -49,6 +49,21 @@ def stable_pieces(branch):
     return pieces
 
 
+def plot_branch(ax, name, branch, values, colour):
+    """values (one per sample) against phi_e: solid where stable, dashed where unstable."""
+    for i0, i1, stable in stable_pieces(branch):
+        ax.plot(branch["phi_e"][i0:i1], values[i0:i1], color=colour,
+                linestyle="-" if stable else "--",
+                label=f"{name} ({'stable' if stable else 'unstable'})")
+
+
+def legend(ax):
+    """One legend entry per label (the pieces of a branch share theirs)."""
+    handles, labels = ax.get_legend_handles_labels()
+    unique = dict(zip(labels, handles))
+    ax.legend(unique.values(), unique.keys(), fontsize=8)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("run")
@@ -65,10 +80,7 @@ def main():
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for name, b in branches.items():
-        for i0, i1, stable in stable_pieces(b):
-            ax.plot(b["phi_e"][i0:i1], b["Eb_hat"][i0:i1], color=colours[name],
-                    linestyle="-" if stable else "--",
-                    label=f"{name} ({'stable' if stable else 'unstable'})")
+        plot_branch(ax, name, b, b["Eb_hat"], colours[name])
     if args.n3:
         n3 = read(os.path.join(args.n3, "branch.csv"))
         lo = min(min(b["phi_e"]) for b in branches.values()) - 0.2
@@ -76,9 +88,7 @@ def main():
         keep = [i for i, p in enumerate(n3["phi_e"]) if lo <= p <= hi]
         ax.plot([n3["phi_e"][i] for i in keep], [n3["Eb_hat"][i] for i in keep],
                 color=colours["n = 3"], linestyle="--", label="n = 3 (unstable, no contact)")
-    handles, labels = ax.get_legend_handles_labels()
-    unique = dict(zip(labels, handles))
-    ax.legend(unique.values(), unique.keys(), fontsize=8)
+    legend(ax)
     ax.set_xlabel("excess angle φe")
     ax.set_ylabel("Ê_b = ∫U_b dΩ / A")
     events = []
@@ -111,19 +121,14 @@ def main():
 
         fig, ax = plt.subplots(figsize=(6.4, 3.6))
         sk = branches["skewed"]
-        for i0, i1, stable in stable_pieces(sk):
-            xs = sk["phi_e"][i0:i1]
-            ys = [sk["E_stretch"][i] + sk["E_bend"][i] + sk["E_penalty"][i] - e_sym(sk["phi_e"][i])
-                  for i in range(i0, i1)]
-            ax.plot(xs, ys, color=colours["skewed"], linestyle="-" if stable else "--",
-                    label=f"skewed ({'stable' if stable else 'unstable'})")
+        difference = [sk["E_stretch"][i] + sk["E_bend"][i] + sk["E_penalty"][i] - e_sym(sk["phi_e"][i])
+                      for i in range(len(sk["phi_e"]))]
+        plot_branch(ax, "skewed", sk, difference, colours["skewed"])
         ax.axhline(0.0, color=colours["symmetric"], linewidth=1.0, label="symmetric")
         for e in events:
             if e["kind"] in ("stability_loss", "energy_crossing"):
                 ax.axvline(e["phi_e"], color="0.6", linewidth=0.7)
-        handles, labels = ax.get_legend_handles_labels()
-        unique = dict(zip(labels, handles))
-        ax.legend(unique.values(), unique.keys(), fontsize=8)
+        legend(ax)
         ax.set_xlabel("excess angle φe")
         ax.set_ylabel("E − E_symmetric (J)")
         fig.tight_layout()
@@ -131,20 +136,16 @@ def main():
 
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
     for name, b in branches.items():
-        for i0, i1, stable in stable_pieces(b):
-            ax.plot(b["phi_e"][i0:i1], b["gamma"][i0:i1], color=colours[name],
-                    linestyle="-" if stable else "--", label=f"{name} ({'stable' if stable else 'unstable'})")
+        plot_branch(ax, name, b, b["gamma"], colours[name])
     ax.axhline(math.pi / 2, color="0.6", linewidth=0.7)
-    handles, labels = ax.get_legend_handles_labels()
-    unique = dict(zip(labels, handles))
-    ax.legend(unique.values(), unique.keys(), fontsize=8)
+    legend(ax)
     ax.set_xlabel("excess angle φe")
     ax.set_ylabel("γ (rad): angle between the contact planes")
     fig.tight_layout()
     fig.savefig(prefix + "_gamma.png", dpi=130)
     for e in events:
         print(json.dumps(e))
-    print(f"wrote {prefix}_eb_hat.png, {prefix}_gamma.png")
+    print(f"wrote {prefix}_eb_hat.png, {prefix}_energy.png, {prefix}_gamma.png")
 
 
 if __name__ == "__main__":
