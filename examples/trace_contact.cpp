@@ -71,6 +71,15 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --grow-from STATE       only stage 5: grow on from a saved stable state of an earlier run
                           (e.g. DIR/states_skewed/point_NNNNN.txt) up to --phi-wind
+  --wind-pairs WHICH      pairs penalised while growing beyond the skewed branch (stage 5):
+                          triangles (default: every near triangle of each proxy vertex, which
+                          keeps a vertex between two layers off both while the layers slide
+                          past each other as the sheet winds) or nearest (per proxy vertex its
+                          nearest triangle, as on the branches; stalls at phi_e = 7.95 for
+                          h = 0.04, see docs/contact.md)
+  --wind-step-bound B     largest motion of any dof in one Newton step of stage 5, in units
+                          of h (default 0.25; 0 = unbounded), so no layer passes through another
+                          within one step
   --ipopt-check 0         skip the Ipopt check of the relaxed skewed state (hard constraints)
   --skewed 0              trace the symmetric branch only
   --skew-from WHERE       top (default): relax the last symmetric state (at --phi-max) pushed
@@ -118,11 +127,17 @@ int run(int argc, char** argv) {
   const std::string skew_from = cl.text("--skew-from", "top");
   const std::string grow_from = cl.text("--grow-from", "");
   const bool ipopt_check = cl.integer("--ipopt-check", 1) != 0;
+  const std::string wind_pairs = cl.text("--wind-pairs", "triangles");
+  const double wind_step_bound = cl.number("--wind-step-bound", 0.25);
   const std::string out_dir = cl.text("--out", "out/contact");
   cl.reject_unknown();
   validate_scene(scene);
   if (skew_from != "branch-point" && skew_from != "top")
     throw std::invalid_argument("--skew-from must be branch-point or top, not '" + skew_from + "'");
+  if (wind_pairs != "nearest" && wind_pairs != "triangles")
+    throw std::invalid_argument("--wind-pairs must be nearest or triangles, not '" + wind_pairs +
+                                "'");
+  if (!(wind_step_bound >= 0.0)) throw std::invalid_argument("--wind-step-bound must be >= 0");
   if (!(stiffness_factor > 0.0)) throw std::invalid_argument("--stiffness-factor must be > 0");
   if (!(max_step > 0.0)) throw std::invalid_argument("--max-step must be > 0");
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
@@ -376,20 +391,47 @@ int run(int argc, char** argv) {
     ContactGrowthOptions growth;
     growth.contact = options;
     growth.newton = branches.relaxation;
+    if (wind_step_bound > 0.0) growth.newton.max_step_inf_norm = wind_step_bound * h;
+    if (wind_pairs == "triangles") growth.contact.selection = NearPairSelection{false, false};
     growth.max_step = 0.05;
     std::printf("# growing from the %s state at phi_e = %.5f to %.4f\n",
                 grow_from.empty() ? "highest stable skewed" : "given", top_skewed_phi, phi_wind);
     open_branch(grown, "grown");
-    const ContactGrowthResult g = grow_with_contact(
-        model, proxy, top_skewed, top_skewed_phi, phi_wind, pinned, growth,
-        [&](const ContactGrowthPoint& p) {
-          if (p.jumped) {
-            std::ostringstream extra;
-            extra << ", \"branch\": \"grown\", \"saddle_escapes\": " << p.saddle_escapes;
-            add_event("jump", p.sample.sample.parameter, extra.str());
-          }
-          write_sample(grown, p.sample);
-        });
+    const auto on_point = [&](const ContactGrowthPoint& p) {
+      if (p.jumped) {
+        std::ostringstream extra;
+        extra << ", \"branch\": \"grown\", \"saddle_escapes\": " << p.saddle_escapes;
+        add_event("jump", p.sample.sample.parameter, extra.str());
+      }
+      write_sample(grown, p.sample);
+    };
+    // The paper's wound-up shape is shown at phi_e = 4 pi: the growth stops there once, and that
+    // state is written as wound_4pi.vtu (shell) and wound_4pi_contact.vtu (proxy, forces).
+    const double four_pi = 4.0 * std::numbers::pi;
+    ContactGrowthResult g;
+    if (top_skewed_phi < four_pi && phi_wind > four_pi) {
+      g = grow_with_contact(model, proxy, top_skewed, top_skewed_phi, four_pi, pinned, growth,
+                            on_point);
+      if (g.reached_target) {
+        const ContactBranchSample& w = g.last.sample;
+        write_vtu(out_dir + "/wound_4pi.vtu", shell_snapshot(model, w.sample.x, 2));
+        const ContactGapConstraints gaps(proxy, w.pairs, options.contact_distance,
+                                         model.dimension(), options.gap);
+        write_vtu(out_dir + "/wound_4pi_contact.vtu",
+                  contact_snapshot(proxy, gaps, w.sample.x, w.forces));
+        std::printf("# wrote the state at phi_e = 4 pi: %s/wound_4pi.vtu, wound_4pi_contact.vtu\n",
+                    out_dir.c_str());
+        const ContactGrowthResult rest = grow_with_contact(
+            model, proxy, w.sample.x, four_pi, phi_wind, pinned, growth, on_point);
+        const int steps = g.steps + rest.steps, failed = g.failed_steps + rest.failed_steps;
+        g = rest;
+        g.steps = steps;
+        g.failed_steps = failed;
+      }
+    } else {
+      g = grow_with_contact(model, proxy, top_skewed, top_skewed_phi, phi_wind, pinned, growth,
+                            on_point);
+    }
     growth_message = g.reached_target ? "reached phi_e = " + std::to_string(phi_wind) : g.message;
     std::printf("# growth: %s (%d steps, %d failed)\n", growth_message.c_str(), g.steps,
                 g.failed_steps);

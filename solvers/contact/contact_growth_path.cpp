@@ -24,14 +24,40 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
   ContactCandidates pairs = near_penalty_pairs(proxy, y, options);
   std::vector<bool> is_fixed(static_cast<std::size_t>(model.dimension()), false);
   for (const Eigen::Index i : fixed_dofs) is_fixed[static_cast<std::size_t>(i)] = true;
-  for (int round = 0; round < max_rounds; ++round) {
+  // With a bound b on the motion of a dof per Newton step, one solve stops once a dof has
+  // moved candidate_margin / 4 (b capped at that too), and the pairs near the new state are
+  // added: two primitives then approach each other by less than candidate_margin between
+  // searches, so no pair outside the set can come closer than the contact distance unseen (a
+  // vertex pushed through a layer whose triangles were not penalised would sit at distance
+  // zero on the wrong side, where the penalty has a kink and Newton stalls).
+  const bool motion_bounded = std::isfinite(newton.max_step_inf_norm);
+  NewtonOptions chunk = newton;
+  if (motion_bounded) {
+    chunk.max_travel = 0.25 * options.candidate_margin;
+    chunk.max_step_inf_norm = std::min(newton.max_step_inf_norm, chunk.max_travel);
+  }
+  int iterations_left = newton.max_iterations;
+  for (int round = 0; round < max_rounds;) {
     PenalizedShell total(model, proxy, pairs, options);
-    const NewtonResult r = NewtonSolver(newton).minimize(total.energy, y, fixed_dofs);
+    chunk.max_iterations = std::max(1, iterations_left);
+    const NewtonResult r = NewtonSolver(chunk).minimize(total.energy, y, fixed_dofs);
     y = r.x;
+    iterations_left -= std::max(1, r.iterations);
+    if (r.status == NewtonStatus::TravelLimit) {
+      if (iterations_left <= 0) {
+        *message = "relaxation failed: newton.max_iterations = " +
+                   std::to_string(newton.max_iterations) + " used up while moving";
+        return false;
+      }
+      // Moved as far as the pair set is trusted: add the pairs near the new state, go on.
+      pairs = merge_contact_pairs(pairs, near_penalty_pairs(proxy, y, options));
+      continue;
+    }
     if (!r.converged()) {
       *message = "relaxation failed: " + r.message;
       return false;
     }
+    ++round;
     // Settled if y is also an equilibrium (to the Newton force tolerance) of the penalty on the
     // pairs near y itself, the energy a trace from y continues with.
     PenalizedShell own(model, proxy, near_penalty_pairs(proxy, y, options), options);

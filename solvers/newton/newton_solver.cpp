@@ -55,6 +55,9 @@ NewtonSolver::NewtonSolver(NewtonOptions options) : options_(options) {
   if (!(o.max_step_inf_norm > 0.0)) {
     fail("max_step_inf_norm = " + sci(o.max_step_inf_norm) + " must be > 0");
   }
+  if (!(o.max_travel > 0.0)) {
+    fail("max_travel = " + sci(o.max_travel) + " must be > 0");
+  }
   if (!(o.shift_initial_factor > 0.0) || !std::isfinite(o.shift_initial_factor)) {
     fail("shift_initial_factor = " + sci(o.shift_initial_factor) + " must be finite and > 0");
   }
@@ -284,6 +287,15 @@ NewtonResult NewtonSolver::minimize(SparseObjective& objective,
                         ", last shift " + sci(shift),
                     x, energy, gradient);
     }
+    if (std::isfinite(opt.max_travel)) {
+      const double travel = (x - x0).lpNorm<Eigen::Infinity>();
+      if (travel >= opt.max_travel)
+        return finish(NewtonStatus::TravelLimit,
+                      "moved " + sci(travel) + " from x0 (max_travel " + sci(opt.max_travel) +
+                          ") in " + std::to_string(iteration) +
+                          " iterations: free gradient inf-norm " + sci(gradient_norm),
+                      x, energy, gradient);
+    }
   }
   return fail_at_best(NewtonStatus::MaxIterations,
                       "reached max_iterations = " + std::to_string(opt.max_iterations) +
@@ -303,6 +315,8 @@ const char* to_string(NewtonStatus status) {
       return "NonFiniteValue";
     case NewtonStatus::FactorizationFailed:
       return "FactorizationFailed";
+    case NewtonStatus::TravelLimit:
+      return "TravelLimit";
   }
   return "unknown";
 }

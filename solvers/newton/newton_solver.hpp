@@ -32,6 +32,10 @@ struct NewtonOptions {
   int max_line_search_steps = 40;
   /// Cap on |dx|_inf of a Newton step, in units of x (the step is scaled down to it); > 0.
   double max_step_inf_norm = std::numeric_limits<double>::infinity();
+  /// Stop (status TravelLimit, x the current iterate) once |x - x0|_inf reaches this, in units
+  /// of x; > 0. With max_step_inf_norm b the travel stays below max_travel + b. For callers
+  /// whose objective is only trusted near x0 (a contact penalty on the pairs near x0).
+  double max_travel = std::numeric_limits<double>::infinity();
   /// First non-zero diagonal shift, relative to the mean |diagonal| of the Hessian; > 0.
   /// It is also the numerical zero of curvature: a Hessian that factorises with this shift
   /// counts as positive definite for decrement_tolerance. Negative curvatures this small come
@@ -68,7 +72,8 @@ enum class NewtonStatus {
   MaxIterations,       ///< Iteration limit reached first.
   LineSearchFailed,    ///< No trial point gave sufficient decrease.
   NonFiniteValue,      ///< Energy, gradient or Hessian not finite where it had to be.
-  FactorizationFailed  ///< No shift up to the cap made the Hessian positive definite.
+  FactorizationFailed,  ///< No shift up to the cap made the Hessian positive definite.
+  TravelLimit           ///< The iterate moved max_travel away from x0 (not a failure).
 };
 
 /// Result of NewtonSolver::minimize.

@@ -4,6 +4,8 @@
 //  - far from touching the result is plain Newton's, bit for bit;
 //  - a pair missed at the start triggers a second round; warm restarts;
 //  - after every converged solve no pair is closer than h - violation_tolerance;
+//  - relax_with_contact with a bound on the Newton step searches the pairs again before two
+//    layers can pass through each other (unbounded, the same relaxation passes through);
 //  - near_contact_pairs against brute force with exact distances;
 //  - contact zones and plane angles on hand-made pairs with known answers;
 //  - bad options and bad input are rejected with messages naming them.
@@ -36,6 +38,7 @@
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/contact_zones.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "support/sheet_states.hpp"
@@ -399,6 +402,65 @@ TEST(ContactEquilibrium, PairMissedAtTheStartTriggersASecondRound) {
   // x is the state of the last solve: the Newton pass, which ends with the layers 0.83 h
   // apart (measured; 17 iterations in all for the two rounds above).
   EXPECT_TRUE(once.x == NewtonSolver(o.newton).minimize(s.model, x0, s.fixed()).x);
+}
+
+// relax_with_contact (the penalty relaxation of the growth path) from a start 4 h above the
+// bottom strip, with the held end columns 8 h lower, so that the unloaded strip would sag
+// far below the bottom one, and a candidate margin of h / 2: no pair is near at the start.
+// Unbounded, the first Newton steps carry the top strip through the bottom one, whose
+// triangles are not in the penalty, and the relaxation ends on the wrong side. With steps
+// bounded by h / 4 each solve stops once a dof has moved h / 8 and the pairs are searched
+// again, so the strip is caught at distance h less the penalty's penetration (force / (k x pairs); measured
+// 0.0066 h at k = 1e4 N/m, bounded by 0.01 h). Unbounded it ends 4 h below the bottom strip.
+TEST(RelaxWithContact, BoundedNewtonStepsCannotPassThroughALayer) {
+  TwoStrips s;
+  const double h = TwoStrips::kH;
+  ContactBranchOptions o;
+  o.contact_distance = h;
+  o.exclusion_radius = 0.5 * kPi * h;
+  o.candidate_margin = 0.5 * h;
+  o.stiffness = 1e4;
+  o.selection = NearPairSelection{false, true};
+  // The top strip as the unloaded arc 4 h above the bottom one, except its outermost columns
+  // (x <= 0 and x >= 0.6 m, beyond the bottom strip's 0.113 ... 0.513 m by more than
+  // h + margin), which are lowered by 8 h and held.
+  Eigen::VectorXd x0 = s.state(4.0 * h, 0.0);
+  std::vector<Eigen::Index> held = s.bottom_dofs;
+  for (Eigen::Index v = 0; v < s.top_vertices; ++v) {
+    const int column = s.top_column[static_cast<std::size_t>(v)];
+    if (column > 0 && column < s.top_mesh.cells_x) continue;
+    x0(3 * v + 2) -= 8.0 * h;
+    for (int c = 0; c < 3; ++c) held.push_back(3 * v + c);
+  }
+  std::sort(held.begin(), held.end());
+  ASSERT_TRUE(near_penalty_pairs(s.proxy, x0, o).empty());
+  // Lowest point of the top strip's proxy over the bottom strip (m).
+  const auto over_bottom = [&](const Eigen::VectorXd& x) {
+    const Eigen::MatrixX3d y = proxy_positions(s.proxy, x);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index p = 0; p < y.rows(); ++p)
+      if (s.proxy.vertex_element(p) < s.top_elements() && y(p, 0) > TwoStrips::kBottomShiftX &&
+          y(p, 0) < TwoStrips::kBottomShiftX + s.bottom_mesh.length)
+        lowest = std::min(lowest, y(p, 2));
+    return lowest;
+  };
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  newton.max_iterations = 400;
+
+  Eigen::VectorXd unbounded = x0;
+  double energy = 0.0;
+  std::string message;
+  relax_with_contact(s.model, s.proxy, unbounded, held, o, newton, &energy, &message);
+  EXPECT_LT(over_bottom(unbounded), -h) << "the unbounded relaxation should pass through";
+
+  newton.max_step_inf_norm = 0.25 * h;
+  Eigen::VectorXd bounded = x0;
+  ASSERT_TRUE(
+      relax_with_contact(s.model, s.proxy, bounded, held, o, newton, &energy, &message))
+      << message;
+  EXPECT_GT(over_bottom(bounded), h - 0.01 * h);
+  EXPECT_GE(closest_pair(s.proxy, bounded, 2.0 * h, o.exclusion_radius), h - 0.01 * h);
 }
 
 // Warm start at a solution: the same pairs and their forces; Ipopt stays put.

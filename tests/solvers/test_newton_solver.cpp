@@ -375,6 +375,31 @@ TEST(NewtonSolver, MaxIterationsReturnsBestIterate) {
   EXPECT_NE(r.message.find("max_iterations"), std::string::npos) << r.message;
 }
 
+// max_travel: the quadratic's minimiser is about 3 away from x0 = 3 (|x*| < 1); with steps
+// capped at 0.4 and max_travel 1 the solve stops after the third step (travel 1.2), reporting
+// TravelLimit with the current iterate, which lies 1.2 from x0 along the first steps' line.
+TEST(NewtonSolver, TravelLimitStopsAfterTheStepThatReachesIt) {
+  const Eigen::Index n = 50;
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::cos(0.3 * static_cast<double>(i));
+  Quadratic q(n, b);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-10;
+  options.max_step_inf_norm = 0.4;
+  options.max_travel = 1.0;
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(n, 3.0);
+  const NewtonResult r = NewtonSolver(options).minimize(q, x0);
+  EXPECT_EQ(r.status, NewtonStatus::TravelLimit) << r.message;
+  EXPECT_FALSE(r.converged());
+  EXPECT_EQ(r.iterations, 3);
+  EXPECT_NEAR((r.x - x0).lpNorm<Eigen::Infinity>(), 1.2, 1e-12);
+  EXPECT_LT(r.energy, q.evaluate(x0, nullptr, nullptr));
+  EXPECT_STREQ(to_string(NewtonStatus::TravelLimit), "TravelLimit");
+  // Without the limit the same solve converges.
+  options.max_travel = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(NewtonSolver(options).minimize(q, x0).converged());
+}
+
 TEST(NewtonSolver, InvalidInputThrows) {
   Quadratic q(10, Eigen::VectorXd::Ones(10));
   NewtonSolver solver;
@@ -387,6 +412,9 @@ TEST(NewtonSolver, InvalidInputThrows) {
   EXPECT_THROW(NewtonSolver{bad}, std::invalid_argument);
   bad = {};
   bad.shift_growth = 1.0;
+  EXPECT_THROW(NewtonSolver{bad}, std::invalid_argument);
+  bad = {};
+  bad.max_travel = 0.0;
   EXPECT_THROW(NewtonSolver{bad}, std::invalid_argument);
   EXPECT_STREQ(to_string(NewtonStatus::LineSearchFailed), "LineSearchFailed");
 }
