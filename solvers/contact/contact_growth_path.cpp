@@ -45,12 +45,14 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     iterations_left -= std::max(1, r.iterations);
     if (r.status == NewtonStatus::TravelLimit) {
       if (iterations_left <= 0) {
-        *message = "relaxation failed: newton.max_iterations = " +
-                   std::to_string(newton.max_iterations) + " used up while moving";
+        *message =
+            "relaxation failed: newton.max_iterations = " + std::to_string(newton.max_iterations) +
+            " used up while moving";
         return false;
       }
-      // Moved as far as the pair set is trusted: add the pairs near the new state, go on.
-      pairs = merge_contact_pairs(pairs, near_penalty_pairs(proxy, y, options));
+      // Moved as far as the pair set is trusted: go on with the pairs near the new state (a
+      // union over a long way would only carry pairs left far behind).
+      pairs = near_penalty_pairs(proxy, y, options);
       continue;
     }
     if (!r.converged()) {

@@ -21,12 +21,13 @@ struct NewtonOptions {
   int max_iterations = 200;
   /// Convergence when the infinity norm of the gradient over free dofs is <= this; > 0.
   double gradient_tolerance = 1e-8;
-  /// Sufficient-decrease constant of the Armijo condition; in (0, 1).
   /// Second convergence test (J; 0 = off): the Newton decrement g^T H^-1 g / 2, the energy
   /// the quadratic model still expects to gain, is at most this and the Hessian is positive
-  /// definite up to the numerical zero shift_initial_factor. Needed where a nearly free mode (e.g. the orientation of a buckling
-  /// pattern on a nearly axisymmetric mesh) keeps the gradient at its rounding floor.
+  /// definite up to the numerical zero shift_initial_factor. Needed where a nearly free mode (e.g.
+  /// the orientation of a buckling pattern on a nearly axisymmetric mesh) keeps the gradient at its
+  /// rounding floor.
   double decrement_tolerance = 0.0;
+  /// Sufficient-decrease constant of the Armijo condition; in (0, 1).
   double armijo_c1 = 1e-4;
   /// Maximum number of trial points per line search (step halved each time); >= 1.
   int max_line_search_steps = 40;
@@ -68,10 +69,10 @@ struct NewtonIterate {
 
 /// Why NewtonSolver::minimize stopped.
 enum class NewtonStatus {
-  Converged,           ///< Free gradient below the tolerance.
-  MaxIterations,       ///< Iteration limit reached first.
-  LineSearchFailed,    ///< No trial point gave sufficient decrease.
-  NonFiniteValue,      ///< Energy, gradient or Hessian not finite where it had to be.
+  Converged,            ///< Free gradient below the tolerance.
+  MaxIterations,        ///< Iteration limit reached first.
+  LineSearchFailed,     ///< No trial point gave sufficient decrease.
+  NonFiniteValue,       ///< Energy, gradient or Hessian not finite where it had to be.
   FactorizationFailed,  ///< No shift up to the cap made the Hessian positive definite.
   TravelLimit           ///< The iterate moved max_travel away from x0 (not a failure).
 };

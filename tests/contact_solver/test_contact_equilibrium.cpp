@@ -410,8 +410,9 @@ TEST(ContactEquilibrium, PairMissedAtTheStartTriggersASecondRound) {
 // Unbounded, the first Newton steps carry the top strip through the bottom one, whose
 // triangles are not in the penalty, and the relaxation ends on the wrong side. With steps
 // bounded by h / 4 each solve stops once a dof has moved h / 8 and the pairs are searched
-// again, so the strip is caught at distance h less the penalty's penetration (force / (k x pairs); measured
-// 0.0066 h at k = 1e4 N/m, bounded by 0.01 h). Unbounded it ends 4 h below the bottom strip.
+// again, so the strip is caught at distance h less the penalty's penetration (force / (k x pairs);
+// measured 0.0066 h at k = 1e4 N/m, bounded by 0.01 h). Unbounded it ends 4 h below the bottom
+// strip.
 TEST(RelaxWithContact, BoundedNewtonStepsCannotPassThroughALayer) {
   TwoStrips s;
   const double h = TwoStrips::kH;
@@ -456,8 +457,7 @@ TEST(RelaxWithContact, BoundedNewtonStepsCannotPassThroughALayer) {
 
   newton.max_step_inf_norm = 0.25 * h;
   Eigen::VectorXd bounded = x0;
-  ASSERT_TRUE(
-      relax_with_contact(s.model, s.proxy, bounded, held, o, newton, &energy, &message))
+  ASSERT_TRUE(relax_with_contact(s.model, s.proxy, bounded, held, o, newton, &energy, &message))
       << message;
   EXPECT_GT(over_bottom(bounded), h - 0.01 * h);
   EXPECT_GE(closest_pair(s.proxy, bounded, 2.0 * h, o.exclusion_radius), h - 0.01 * h);
