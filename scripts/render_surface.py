@@ -2,10 +2,14 @@
 """Render a growshell .vtu surface (ASCII, triangles) to a PNG with matplotlib.
 
 usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 25 --azim -60]
-                         [--contact CONTACT.vtu] [--log]
+                         [--views "ELEV,AZIM;ELEV,AZIM;..."] [--contact CONTACT.vtu] [--log]
+                         [--alpha 0.85]
   --contact  a contact-proxy snapshot of the same state (trace_contact's *_contact_*.vtu):
-             its points in contact are drawn in red, sized by their contact force
+             its points in contact are drawn in red, sized by their contact force, over the
+             surface (also where a layer hides them: wound-up shapes touch between layers)
   --log      colour by log10 of the field (bending energy concentrates at the apex)
+  --views    several views side by side (overrides --elev/--azim)
+  --alpha    opacity of the surface
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
 """
 import argparse
@@ -39,35 +43,48 @@ def main():
     parser.add_argument("--azim", type=float, default=-60.0)
     parser.add_argument("--contact")
     parser.add_argument("--log", action="store_true")
+    parser.add_argument("--views")
+    parser.add_argument("--alpha", type=float, default=0.85)
     args = parser.parse_args()
     text = open(args.input).read()
     points = read_array(text, components=3).reshape(-1, 3)
     cells = read_array(text, name="connectivity").astype(int).reshape(-1, 3)
     values = read_array(text, name=args.field)
-    fig = plt.figure(figsize=(7, 6))
-    ax = fig.add_subplot(111, projection="3d")
+    if args.views:
+        views = [tuple(float(v) for v in view.split(",")) for view in args.views.split(";")]
+    else:
+        views = [(args.elev, args.azim)]
     if args.log:
         values = np.log10(np.maximum(values, values[values > 0].min() if (values > 0).any() else 1e-300))
     colors = plt.cm.viridis((values - values.min()) / max(np.ptp(values), 1e-300))
-    poly = Poly3DCollection(points[cells], facecolors=colors, edgecolors="none", alpha=0.85)
-    ax.add_collection3d(poly)
+    touching = None
     if args.contact:
         ctext = open(args.contact).read()
         cpoints = read_array(ctext, components=3).reshape(-1, 3)
         force = read_array(ctext, name="contact_force")
         touching = force > 0
-        if touching.any():
+    fig = plt.figure(figsize=(7 * len(views), 6))
+    for k, (elev, azim) in enumerate(views):
+        ax = fig.add_subplot(1, len(views), k + 1, projection="3d")
+        # Draw in the order added (surface, then contact points), not by depth, so that contact
+        # between layers stays visible.
+        ax.computed_zorder = False
+        poly = Poly3DCollection(points[cells], facecolors=colors, edgecolors="none",
+                                alpha=args.alpha)
+        ax.add_collection3d(poly)
+        if touching is not None and touching.any():
             size = 4 + 40 * force[touching] / force[touching].max()
             ax.scatter(cpoints[touching, 0], cpoints[touching, 1], cpoints[touching, 2], s=size,
                        c="red", depthshade=False, label="in contact")
             ax.legend(loc="upper right")
-    lo, hi = points.min(axis=0), points.max(axis=0)
-    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-    for axis, c in zip("xyz", centre):
-        getattr(ax, "set_%slim" % axis)(c - half, c + half)
-    ax.view_init(elev=args.elev, azim=args.azim)
-    ax.set_title("%s (%s%s)" % (args.input.split("/")[-1], "log10 " if args.log else "",
-                                 args.field))
+        lo, hi = points.min(axis=0), points.max(axis=0)
+        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+        for axis, c in zip("xyz", centre):
+            getattr(ax, "set_%slim" % axis)(c - half, c + half)
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_title("%s (%s%s), elev %g azim %g" % (args.input.split("/")[-1],
+                                                      "log10 " if args.log else "", args.field,
+                                                      elev, azim))
     fig.savefig(args.output, dpi=90)
 
 
