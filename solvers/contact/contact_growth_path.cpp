@@ -25,11 +25,12 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
   std::vector<bool> is_fixed(static_cast<std::size_t>(model.dimension()), false);
   for (const Eigen::Index i : fixed_dofs) is_fixed[static_cast<std::size_t>(i)] = true;
   // With a bound b on the motion of a dof per Newton step, one solve stops once a dof has
-  // moved candidate_margin / 4 (b capped at that too), and the pairs near the new state are
-  // added: two primitives then approach each other by less than candidate_margin between
+  // moved candidate_margin / 4 (b capped at that too), and the pairs are searched again at the
+  // new state: two primitives then approach each other by less than candidate_margin between
   // searches, so no pair outside the set can come closer than the contact distance unseen (a
-  // vertex pushed through a layer whose triangles were not penalised would sit at distance
-  // zero on the wrong side, where the penalty has a kink and Newton stalls).
+  // vertex pushed through a layer whose triangles were not penalised would end on the wrong
+  // side, where the penalty drives it further in). The bounded solves share one budget of
+  // newton.max_iterations steps; without a bound every round has its own, as before.
   const bool motion_bounded = std::isfinite(newton.max_step_inf_norm);
   NewtonOptions chunk = newton;
   if (motion_bounded) {
@@ -39,7 +40,7 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
   int iterations_left = newton.max_iterations;
   for (int round = 0; round < max_rounds;) {
     PenalizedShell total(model, proxy, pairs, options);
-    chunk.max_iterations = std::max(1, iterations_left);
+    if (motion_bounded) chunk.max_iterations = std::max(1, iterations_left);
     const NewtonResult r = NewtonSolver(chunk).minimize(total.energy, y, fixed_dofs);
     y = r.x;
     iterations_left -= std::max(1, r.iterations);

@@ -51,12 +51,16 @@ struct PenalizedShell {
 /// the set it was minimised with must contain every pair near the result (then no contact is
 /// missed; a vertex between two layers keeps a triangle on each side). Otherwise it is
 /// minimised again with the union of the old and the new pairs (the set only grows, so nearest
-/// triangles that flip back and forth cannot cycle). With a finite newton.max_step_inf_norm b,
-/// each solve stops once a dof has moved candidate_margin / 4 (steps capped at that too) and
-/// goes on with the pairs near the new state (newton.max_iterations counts all steps),
-/// so no two primitives approach by candidate_margin unseen and no vertex is pushed through a layer
-/// whose triangles are not in the set. On success y is the minimiser and `energy` its E + P (J);
-/// returns false (y the last iterate, `message` why) if Newton fails or max_rounds pass.
+/// triangles that flip back and forth cannot cycle).
+///
+/// With a finite newton.max_step_inf_norm b, each solve stops once a dof has moved
+/// candidate_margin / 4 (steps capped at that too) and goes on with the pairs near the new
+/// state, so no two primitives approach by candidate_margin unseen and no vertex is pushed
+/// through a layer whose triangles are not in the set; newton.max_iterations then counts the
+/// steps of all solves (without a bound it applies to each round).
+///
+/// On success y is the minimiser and `energy` its E + P (J); returns false (y the last
+/// iterate, `message` why) if Newton fails, the step budget is used up, or max_rounds pass.
 bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
