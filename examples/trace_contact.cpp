@@ -264,8 +264,7 @@ int run(int argc, char** argv) {
           << s.normalized_bending << ',' << s.current_area << ',' << s.min_distance << ','
           << s.sample.negative_eigenvalues << ',' << gamma << ',' << s.active_pairs << ',' << force
           << ',' << s.penalty_energy << ',' << s.energy_slope << ',' << s.sample.arclength << ','
-          << s.sample.corrector_iterations << ','
-          << s.pairs.vertex_triangle.rows() + s.pairs.edge_edge.rows() << '\n';
+          << s.sample.corrector_iterations << ',' << s.pairs.size() << '\n';
     b.csv.flush();
     std::ostringstream name;
     name << std::setw(5) << std::setfill('0') << b.index++;

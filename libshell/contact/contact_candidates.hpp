@@ -72,6 +72,8 @@ struct ContactCandidates {
 
   /// True if there is no candidate pair.
   bool empty() const { return vertex_triangle.rows() == 0 && edge_edge.rows() == 0; }
+  /// Number of pairs of both kinds.
+  Eigen::Index size() const { return vertex_triangle.rows() + edge_edge.rows(); }
 };
 
 /// All candidate pairs of `proxy` at the current proxy positions `positions` (metres, one row

@@ -80,7 +80,7 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
   map_.makeCompressed();
 
   const double mean_edge = mean_reference_edge_length(proxy);
-  const Eigen::Index num_pairs = pairs.vertex_triangle.rows() + pairs.edge_edge.rows();
+  const Eigen::Index num_pairs = pairs.size();
   if (num_pairs > 0 && !(mean_edge > 0.0 && std::isfinite(mean_edge)))
     throw_invalid("the proxy's reference edges have no positive mean length");
   distance_floor_ = kContactDistanceFloor * mean_edge;

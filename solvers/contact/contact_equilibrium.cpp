@@ -186,14 +186,12 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
     // Some pair came closer than allowed without being constrained: add the selected pairs
     // now within reach (cheap: nearest triangles) and, only if that adds nothing, the
     // violating pairs themselves; then solve again from the feasible start. If nothing new
-    // can be added, another round would repeat the same solve.
-    const auto same_size = [](const ContactCandidates& a, const ContactCandidates& b) {
-      return a.vertex_triangle.rows() == b.vertex_triangle.rows() && a.edge_edge.rows() == b.edge_edge.rows();
-    };
+    // can be added, another round would repeat the same solve. (A union contains `pairs`, so
+    // it added nothing iff it has as many pairs.)
     ContactCandidates next =
         merge_contact_pairs(pairs, near_contact_pairs(proxy, x, reach, options.exclusion_radius, selection));
-    if (same_size(next, pairs)) next = merge_contact_pairs(next, violators);
-    if (same_size(next, pairs)) {
+    if (next.size() == pairs.size()) next = merge_contact_pairs(next, violators);
+    if (next.size() == pairs.size()) {
       out.message = "a constrained pair ends closer than allowed (min distance " +
                     std::to_string(out.min_distance) + " m); tighten the minimiser's tolerances";
       return out;

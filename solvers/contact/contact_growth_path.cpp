@@ -22,8 +22,6 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
                         const ContactBranchOptions& options, const NewtonOptions& newton,
                         double* energy, std::string* message, int max_rounds) {
   ContactCandidates pairs = near_penalty_pairs(proxy, y, options);
-  std::vector<bool> is_fixed(static_cast<std::size_t>(model.dimension()), false);
-  for (const Eigen::Index i : fixed_dofs) is_fixed[static_cast<std::size_t>(i)] = true;
   // With a bound b on the motion of a dof per Newton step, one solve stops once a dof has
   // moved candidate_margin / 4 (b capped at that too), and the pairs are searched again at the
   // new state: two primitives then approach each other by less than candidate_margin between
@@ -66,10 +64,8 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     PenalizedShell own(model, proxy, near_penalty_pairs(proxy, y, options), options);
     Eigen::VectorXd g;
     const double e = own.energy.evaluate(y, &g, nullptr);
-    double free_force = 0.0;
-    for (Eigen::Index i = 0; i < g.size(); ++i)
-      if (!is_fixed[static_cast<std::size_t>(i)]) free_force = std::max(free_force, std::abs(g[i]));
-    if (free_force <= newton.gradient_tolerance) {
+    for (const Eigen::Index i : fixed_dofs) g[i] = 0.0;  // reactions of the held dofs
+    if (g.lpNorm<Eigen::Infinity>() <= newton.gradient_tolerance) {
       *energy = e;
       return true;
     }
@@ -78,8 +74,7 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     // misses no contact, and is accepted; else minimise again with the union of both sets,
     // which only grows, so the rounds end.
     const ContactCandidates merged = merge_contact_pairs(pairs, own.pairs);
-    if (merged.vertex_triangle.rows() == pairs.vertex_triangle.rows() &&
-        merged.edge_edge.rows() == pairs.edge_edge.rows()) {
+    if (merged.size() == pairs.size()) {
       *energy = r.energy;
       return true;
     }

@@ -144,15 +144,14 @@ TEST(ContactCandidates, SpatialHashEqualsBruteForceOnRandomFoldedDiscs) {
                   r_ex);
       }
       EXPECT_EQ(static_cast<Eigen::Index>(vt.size()) + static_cast<Eigen::Index>(ee.size()),
-                hash.vertex_triangle.rows() + hash.edge_edge.rows());
+                hash.size());
       EXPECT_LE(hash.vertex_triangle.rows(), all.vertex_triangle.rows());
       total_vt += hash.vertex_triangle.rows();
       total_ee += hash.edge_edge.rows();
       std::cout << "seed " << seed << " r_ex " << r_ex << " d " << d << ": vertex-triangle "
                 << hash.vertex_triangle.rows() << ", edge-edge " << hash.edge_edge.rows()
-                << ", without exclusion " << all.vertex_triangle.rows() + all.edge_edge.rows()
-                << ", pairs examined " << hash.pairs_examined << " of " << brute.pairs_examined
-                << "\n";
+                << ", without exclusion " << all.size() << ", pairs examined "
+                << hash.pairs_examined << " of " << brute.pairs_examined << "\n";
     }
   }
   // The test is only meaningful if the folds produce candidates and exclusions.
@@ -233,9 +232,9 @@ TEST(ContactCandidates, CostGrowsLinearlyAtFixedDensity) {
     const ContactCandidates c = find_contact_candidates(proxy, y, options);
     const double primitives = static_cast<double>(proxy.num_vertices() + proxy.edges.rows());
     per_primitive.push_back(static_cast<double>(c.pairs_examined) / primitives);
-    std::cout << "rings " << rings << ": primitives " << primitives << ", candidates "
-              << c.vertex_triangle.rows() + c.edge_edge.rows() << ", pairs examined "
-              << c.pairs_examined << " (" << per_primitive.back() << " per primitive)\n";
+    std::cout << "rings " << rings << ": primitives " << primitives << ", candidates " << c.size()
+              << ", pairs examined " << c.pairs_examined << " (" << per_primitive.back()
+              << " per primitive)\n";
     EXPECT_FALSE(c.empty()) << rings;  // wrapped through itself: real candidates exist
   }
   // Linear cost: a 16x larger problem may not cost more than 1.5x per primitive; quadratic
