@@ -107,6 +107,17 @@ struct GrownDisc {
     o.arclength.max_tangent_angle = 0.5;
     return o;
   }
+  // Ipopt on the same scene (contact distance, exclusion and margin as options(), lengths and
+  // forces scaled by h and the shell's force scale); each test sets its own tolerances.
+  ContactSolveOptions ipopt_options() const {
+    ContactSolveOptions o;
+    o.contact_distance = kH;
+    o.exclusion_radius = 0.5 * std::numbers::pi * kH;
+    o.candidate_margin = kH;
+    o.minimizer.length_scale = kH;
+    o.minimizer.force_scale = model.natural_force_scale();
+    return o;
+  }
 };
 
 GrownDisc& disc() {
@@ -219,13 +230,8 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   ASSERT_LT(last, samples.size()) << "no stable sample in contact";
   const double phi = samples[last].sample.parameter;
   d.model.set_excess_angle(phi);
-  ContactSolveOptions ip;
-  ip.contact_distance = kH;
-  ip.exclusion_radius = o.exclusion_radius;
-  ip.candidate_margin = kH;
+  ContactSolveOptions ip = d.ipopt_options();
   ip.violation_tolerance = 1e-3 * kH;
-  ip.minimizer.length_scale = kH;
-  ip.minimizer.force_scale = d.model.natural_force_scale();
   ip.minimizer.tolerance = 1e-10;
   ip.minimizer.constraint_violation_tolerance = 1e-9 * kH;
   ip.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * kH;
@@ -267,14 +273,9 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
   o.relaxation.gradient_tolerance = 1e-5 * d.model.natural_force_scale();
   o.relaxation.max_iterations = 400;
   // Ipopt with hard constraints on vertex-triangle and edge-edge pairs checks the skewed state.
-  ContactSolveOptions ipopt;
-  ipopt.contact_distance = kH;
-  ipopt.exclusion_radius = o.contact.exclusion_radius;
-  ipopt.candidate_margin = kH;
+  ContactSolveOptions ipopt = d.ipopt_options();
   ipopt.edge_edge_pairs = true;
   ipopt.violation_tolerance = 1e-2 * kH;
-  ipopt.minimizer.length_scale = kH;
-  ipopt.minimizer.force_scale = d.model.natural_force_scale();
   ipopt.minimizer.tolerance = 1e-8;
   ipopt.minimizer.constraint_violation_tolerance = 1e-6 * kH;
   ipopt.minimizer.complementarity_tolerance = 1e-8 * d.model.natural_force_scale() * kH;

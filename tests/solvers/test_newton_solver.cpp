@@ -206,10 +206,16 @@ Eigen::VectorXd near_saddle(Eigen::Index n) {
   return x;
 }
 
-TEST(NewtonSolver, ConvexQuadraticConvergesInOneIteration) {
-  const Eigen::Index n = 50;
+// Right-hand side of the convex quadratic tests: b_i = cos(0.3 i).
+Eigen::VectorXd cosine_load(Eigen::Index n) {
   Eigen::VectorXd b(n);
   for (Eigen::Index i = 0; i < n; ++i) b[i] = std::cos(0.3 * static_cast<double>(i));
+  return b;
+}
+
+TEST(NewtonSolver, ConvexQuadraticConvergesInOneIteration) {
+  const Eigen::Index n = 50;
+  const Eigen::VectorXd b = cosine_load(n);
   Quadratic q(n, b);
   NewtonOptions options;
   options.gradient_tolerance = 1e-10;  // cond(A) <= 3: the exact solve leaves ~1e-15
@@ -380,9 +386,7 @@ TEST(NewtonSolver, MaxIterationsReturnsBestIterate) {
 // TravelLimit with the current iterate, which lies 1.2 from x0 along the first steps' line.
 TEST(NewtonSolver, TravelLimitStopsAfterTheStepThatReachesIt) {
   const Eigen::Index n = 50;
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::cos(0.3 * static_cast<double>(i));
-  Quadratic q(n, b);
+  Quadratic q(n, cosine_load(n));
   NewtonOptions options;
   options.gradient_tolerance = 1e-10;
   options.max_step_inf_norm = 0.4;
