@@ -1,8 +1,9 @@
 // trace_contact: the e-cone branches of a growing disc through self-contact, and the critical
 // excess angle where the skewed cone takes over from the symmetric one.
 //
-// 1. The flat disc (seeded as econe_at) grows without contact, in natural steps, to
-//    --phi-contact-start (below first contact), or a saved state is loaded (--start).
+// 1. The flat disc is followed by continuation to its n = 2 branch point and the cone born there
+//    (solvers/continuation/cone_branch_entry.hpp) up to --phi-contact-start (below first
+//    contact), or a saved state is loaded (--start).
 // 2. The symmetric branch is followed by pseudo-arclength continuation with the contact penalty
 //    (solvers/contact/contact_branch.hpp) up to --phi-max, also where it is unstable; first
 //    contact and the loss of stability are located on it.
@@ -28,12 +29,10 @@
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
 #include "examples/support/scene_command_line.hpp"
@@ -46,7 +45,9 @@
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/contact_zones.hpp"
 #include "solvers/contact/econe_branches.hpp"
-#include "solvers/continuation/growth_path.hpp"
+#include "solvers/continuation/cone_branch_entry.hpp"
+#include "solvers/continuation/parametrized_objective.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
 namespace {
@@ -61,7 +62,7 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --phi-max P             end of the symmetric branch and start of the skewed one (default 10)
   --phi-wind P            follow the skewed branch forward up to P, and beyond its end grow
                           on by minimisation (DIR/branch_grown.csv; default 13; 0 = skip)
-  --phi-contact-start P   contact-free growth from flat up to P (default 5.5)
+  --phi-contact-start P   contact-free cone traced from flat up to P (default 5.5)
   --start STATE           start from a saved contact-free state instead (trace_disc's
                           DIR/states/point_NNNNN.txt of the same scene)
   --stiffness-factor F    penalty stiffness k = F Y l^2 / h (l: proxy spacing; default 10)
@@ -168,14 +169,13 @@ int run(int argc, char** argv) {
 
   if (!grow_from.empty() && !(phi_wind > 0.0))
     throw std::invalid_argument("--grow-from needs --phi-wind P > 0");
-  // 1. Contact-free growth to the start of the contact trace.
+  // 1. The contact-free cone up to the start of the contact trace.
   Eigen::VectorXd x;
   double phi = 0.0;
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = tolerance * model.natural_force_scale();
-  // The decrement test stops Newton's crawl along the nearly free orientation mode of the fold
-  // pattern (as in econe_at); the trace's corrector then tests the force, and if it cannot
-  // reach the tolerance from such a state the trace is retried with a looser one (below).
+  // Relaxations (skewed search, growth beyond the skewed branch): the decrement test stops
+  // Newton's crawl along the nearly free orientation mode of the fold pattern (as in econe_at).
   newton_options.decrement_tolerance = 1e-6 * Y * h * h * h;
   if (!start_file.empty() || !grow_from.empty()) {
     const std::string file = grow_from.empty() ? start_file : grow_from;
@@ -184,21 +184,38 @@ int run(int argc, char** argv) {
     phi = s.parameter;
     std::printf("# start: %s at phi_e = %.6f\n", file.c_str(), phi);
   } else {
-    std::mt19937 rng(scene.continuation.seed);
-    const double amplitude = scene.continuation.perturbation_amplitude;
-    const Eigen::VectorXd x_start = X + examples::disc_perturbation(model, amplitude, rng, R);
-    GrowthPathOptions path_options;
-    path_options.max_step = 0.25;
-    const GrowthPathResult path = grow_along_path(
-        model, x_start, 0.0, phi_contact_start, pinned, NewtonSolver(newton_options),
-        [&](int) { return examples::disc_perturbation(model, amplitude, rng, R); }, path_options);
-    if (!path.reached_target)
-      throw std::runtime_error("the contact-free growth ended at phi_e = " +
-                               std::to_string(path.last.excess_angle) + ": " + path.message);
-    x = path.last.x;
-    phi = path.last.excess_angle;
-    std::printf("# grown without contact to phi_e = %.4f in %d steps (%.1f s)\n", phi, path.steps,
-                std::chrono::duration<double>(Clock::now() - wall_start).count());
+    // The flat branch up to the n = 2 branch point and the mirror-symmetric cone born there,
+    // by continuation as in trace_disc: the cone keeps the orientation of the critical mode
+    // (folds on the mesh's mirror axes). Natural growth steps from a perturbed flat disc let
+    // the fold pattern creep round instead and stop wherever Newton's decrement test stops the
+    // crawl, on a saddle of the orientation (docs/validation.md).
+    ShellGrowthFamily free_family(model);
+    ArclengthOptions cone_options;
+    cone_options.initial_step = scene.continuation.max_step / 4;
+    cone_options.max_step = scene.continuation.max_step;
+    cone_options.min_step = scene.continuation.min_step;
+    cone_options.gradient_tolerance = tolerance * model.natural_force_scale();
+    cone_options.parameter_max = phi_contact_start;
+    ConeEntryOptions entry_options;
+    entry_options.folds = 2;
+    entry_options.thickness = h;
+    entry_options.radius = R;
+    const ConeBranchEntry entry =
+        enter_cone_branch(free_family, model, entry_options, pinned, cone_options);
+    if (!entry.found) throw std::runtime_error("the flat disc did not buckle: " + entry.message);
+    const BranchTrace cone =
+        trace_branch_along(free_family, entry.start, entry.branch_point.parameter, entry.mode, 0.0,
+                           pinned, cone_options);
+    if (!cone.reached_bound)
+      throw std::runtime_error("the contact-free cone ended at phi_e = " +
+                               std::to_string(cone.last.parameter) + ": " + cone.message);
+    x = cone.last.x;
+    phi = cone.last.parameter;
+    std::printf(
+        "# buckled at phi_e = %.7f; cone traced without contact to phi_e = %.4f in %d "
+        "steps (%.1f s)\n",
+        entry.branch_point.parameter, phi, cone.steps,
+        std::chrono::duration<double>(Clock::now() - wall_start).count());
   }
 
   ContactBranchOptions options;
@@ -345,9 +362,9 @@ int run(int argc, char** argv) {
   EconeBranchResult result;
   if (grow_from.empty()) {
     result = trace_econe_branches(model, proxy, x, phi, pinned, branches, callbacks);
-    // A start converged by the decrement test can sit further from equilibrium (along the
-    // nearly free orientation mode) than the corrector's force tolerance: loosen it tenfold
-    // while no sample has converged, down to 1e-4.
+    // A saved start (--start) converged at a looser tolerance, or by a decrement test, can sit
+    // further from equilibrium (along the nearly free orientation mode) than the corrector's
+    // force tolerance: loosen it tenfold while no sample has converged, down to 1e-4.
     for (double t = 10.0 * tolerance; result.symmetric.steps == 0 && t <= 1e-4 * 1.0001;
          t *= 10.0) {
       std::printf("# the trace could not start at tolerance %.0e (%s); retrying at %.0e\n",

@@ -29,6 +29,7 @@
 #include "libshell/io/scene.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
+#include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
@@ -86,43 +87,6 @@ Eigen::VectorXd pattern_rotation(const ShellModel& model, const Eigen::VectorXd&
   }
   for (const Eigen::Index d : pinned) out(d) = 0.0;
   return out;
-}
-
-/// Out-of-plane field r^n cos(n theta): the mirror-symmetric member of the n-fold pair.
-Eigen::VectorXd mode_hint(const ShellModel& model, int n) {
-  const Eigen::VectorXd& X = model.reference_positions();
-  Eigen::VectorXd hint = Eigen::VectorXd::Zero(X.size());
-  for (Eigen::Index v = 0; v < X.size() / 3; ++v) {
-    const double r = std::hypot(X(3 * v), X(3 * v + 1)), t = std::atan2(X(3 * v + 1), X(3 * v));
-    hint(3 * v + 2) = std::pow(r, n) * std::cos(n * t);
-  }
-  return hint;
-}
-
-/// Dominant angular wavenumber k >= 2 of the out-of-plane part of a mode on the outer rim
-/// (k = 1 is the tilt that the rigid-motion pins add to every mode).
-int angular_wavenumber(const ShellModel& model, const Eigen::VectorXd& mode) {
-  const Eigen::VectorXd& X = model.reference_positions();
-  double r_max = 0.0;
-  for (int v : model.sheet_vertices()) r_max = std::max(r_max, X.segment<2>(3 * v).norm());
-  double best = -1.0;
-  int best_k = 0;
-  for (int k = 2; k <= 8; ++k) {
-    double c = 0.0, s = 0.0, norm = 0.0;
-    for (int v : model.sheet_vertices()) {
-      if (X.segment<2>(3 * v).norm() < 0.999 * r_max) continue;
-      const double t = std::atan2(X(3 * v + 1), X(3 * v));
-      c += mode(3 * v + 2) * std::cos(k * t);
-      s += mode(3 * v + 2) * std::sin(k * t);
-      norm += 1.0;
-    }
-    const double power = (c * c + s * s) / (norm * norm);
-    if (power > best) {
-      best = power;
-      best_k = k;
-    }
-  }
-  return best_k;
 }
 
 int run(int argc, char** argv) {
@@ -362,45 +326,21 @@ int run(int argc, char** argv) {
                                sign * start.tangent_parameter, pinned, options, on_sample,
                                on_special, events, on_event);
   } else {
-    // The flat branch up to the branch point of the n-fold mode (the flat branch is stable up
-    // to the first one; the n-th pair of modes goes unstable at the (n-1)-th).
-    // The flat disc buckles at phi_c = 10.6 (h/R)^2 (n = 2) and 21.1 (h/R)^2 (n = 3): steps and
-    // the location tolerance scale with (h/R)^2 so that thin sheets (h = 0.001: phi_c = 1e-5)
-    // do not pass several branch points in one step.
-    const double h_over_r2 = (h / scene.geometry.radius) * (h / scene.geometry.radius);
-    ArclengthOptions flat_options = options;
-    flat_options.initial_step = std::min(1e-3, 0.25 * h_over_r2);
-    flat_options.max_step = std::min(0.01, 2.5 * h_over_r2);
-    flat_options.min_step = std::min(flat_options.min_step, 1e-3 * flat_options.initial_step);
-    flat_options.special_point_tolerance = std::min(options.special_point_tolerance, 1e-3 * h_over_r2);
-    flat_options.max_special_points = scene.continuation.mode - 1;
-    std::vector<SpecialPoint> flat_points;
-    BranchTrace flat = trace_branch(
-        family, X, scene.continuation.phi_start, +1, pinned, flat_options, {},
-        [&](const SpecialPoint& sp) {
-          flat_points.push_back(sp);
-          on_special(sp);
-        });
-    flat_cost = flat.cost;
-    const Eigen::VectorXd hint = mode_hint(model, scene.continuation.mode);
-    const SpecialPoint* chosen = nullptr;
-    for (const SpecialPoint& sp : flat_points) {
-      const Eigen::VectorXd m = critical_mode(family, sp.x, sp.parameter, hint, pinned, options);
-      if (angular_wavenumber(model, m) == scene.continuation.mode) chosen = &sp;
-    }
-    if (!chosen) {
-      std::fprintf(stderr, "trace_disc: error: no branch point with a %d-fold mode on the flat "
-                   "branch up to phi_e = %g (%s)\n", scene.continuation.mode,
-                   flat.last.parameter, flat.message.c_str());
+    ConeEntryOptions entry_options;
+    entry_options.folds = scene.continuation.mode;
+    entry_options.phi_start = scene.continuation.phi_start;
+    entry_options.thickness = h;
+    entry_options.radius = scene.geometry.radius;
+    const ConeBranchEntry entry =
+        enter_cone_branch(family, model, entry_options, pinned, options, on_special);
+    flat_cost = entry.flat.cost;
+    if (!entry.found) {
+      std::fprintf(stderr, "trace_disc: error: %s\n", entry.message.c_str());
       return 3;
     }
-    const Eigen::VectorXd mode = critical_mode(family, chosen->x, chosen->parameter, hint, pinned, options);
     std::printf("# switching onto the %d-fold cone at phi_e = %.7f\n", scene.continuation.mode,
-                chosen->parameter);
-    // Step off the flat branch along the mode; the cone's amplitude near threshold shrinks with
-    // h, so very thin sheets need a smaller step (h < 0.005 R) for the corrector to converge.
-    const double switch_step = 0.005 * std::min(1.0, h / (0.005 * scene.geometry.radius));
-    trace = trace_branch_along(family, chosen->x + switch_step * mode, chosen->parameter, mode, 0.0,
+                entry.branch_point.parameter);
+    trace = trace_branch_along(family, entry.start, entry.branch_point.parameter, entry.mode, 0.0,
                                pinned, options, on_sample, on_special, events, on_event);
   }
   snapshot(trace.last, "last.vtu");
