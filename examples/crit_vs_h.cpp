@@ -143,6 +143,7 @@ int run(int argc, char** argv) {
     c.candidate_margin = h;
     c.stiffness = stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
     c.violation_tolerance = 0.25 * h;
+    c.repin_above_condition = 20.0;  // as trace_contact: pins chosen again where they degrade
     c.arclength.initial_step = max_step / 4;
     c.arclength.max_step = max_step;
     c.arclength.min_step = 1e-6;

@@ -224,6 +224,9 @@ int run(int argc, char** argv) {
   options.candidate_margin = margin_option > 0.0 ? margin_option : h;
   options.stiffness = stiffness;
   options.violation_tolerance = 0.25 * h;
+  // Rim vertices pinned on the reference come round next to the pinning axis as the cone
+  // grows (see ContactBranchOptions::repin_above_condition).
+  options.repin_above_condition = 20.0;
   options.arclength.initial_step = max_step / 4;
   options.arclength.max_step = max_step;
   options.arclength.min_step = 1e-6;
@@ -477,6 +480,8 @@ int run(int argc, char** argv) {
     o << "{\"steps\": " << t.steps << ", \"failed_steps\": " << t.failed_steps
       << ", \"segments\": " << t.cost.segments
       << ", \"rebuilds\": " << t.cost.rebuilds_after_violation
+      << ", \"repinnings\": " << t.cost.repinnings
+      << ", \"union_restarts\": " << t.cost.union_restarts
       << ", \"linearizations\": " << c.linearizations
       << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
       << ", \"assembly_seconds\": " << c.assembly_seconds

@@ -11,6 +11,7 @@
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/penalized_growth_family.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
 
 namespace growshell {
 
@@ -40,6 +41,8 @@ void validate(const ContactBranchOptions& o) {
         o.violation_tolerance < o.contact_distance))
     throw std::invalid_argument(
         "ContactBranchOptions::violation_tolerance must be in [0, contact_distance)");
+  if (!(o.repin_above_condition >= 0.0))
+    throw std::invalid_argument("ContactBranchOptions::repin_above_condition must be >= 0");
   if (o.steps_per_segment < 1)
     throw std::invalid_argument("ContactBranchOptions::steps_per_segment must be >= 1");
 }
@@ -129,7 +132,13 @@ ContactBranchTrace trace_contact_branch(
   if (x0.size() != model.dimension() || direction_state.size() != model.dimension())
     throw std::invalid_argument("trace_contact_branch: x0 and direction_state need " +
                                 std::to_string(model.dimension()) + " entries");
+  if (options.repin_above_condition > 0.0 && fixed_dofs.size() != 6)
+    throw std::invalid_argument(
+        "trace_contact_branch: repin_above_condition needs the six rigid-motion pins as "
+        "fixed_dofs, got " +
+        std::to_string(fixed_dofs.size()) + " dofs");
   ContactBranchTrace out;
+  std::vector<Eigen::Index> segment_fixed = fixed_dofs;
   const ArclengthOptions& arc = options.arclength;
   Eigen::VectorXd start_x = x0, start_direction = direction_state;
   double start_phi = phi0, start_direction_parameter = direction_parameter;
@@ -137,13 +146,27 @@ ContactBranchTrace trace_contact_branch(
   double margin = options.candidate_margin;
   bool have_sample = false;  // out.last holds a converged sample
   int retries = 0;
+  ContactCandidates previous_pairs;
+  bool keep_previous_pairs = false;  // the start did not converge on the rebuilt set alone
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
-    const ContactCandidates pairs =
-        near_contact_pairs(proxy, start_x, options.contact_distance + margin,
-                           options.exclusion_radius, options.selection);
+    ContactCandidates pairs = near_contact_pairs(proxy, start_x, options.contact_distance + margin,
+                                                 options.exclusion_radius, options.selection);
+    if (keep_previous_pairs) pairs = merge_contact_pairs(pairs, previous_pairs);
     out.cost.pair_search_seconds += seconds_since(t0);
+    if (options.repin_above_condition > 0.0) {
+      const std::vector<Eigen::Index> pins = well_conditioned_pins(
+          Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(start_x.data(),
+                                                                          start_x.size() / 3, 3),
+          segment_fixed, model.sheet_vertices(), options.repin_above_condition);
+      if (pins != segment_fixed) {
+        segment_fixed = pins;
+        ++out.cost.repinnings;
+        // The tangent carried over moves only free dofs of the new gauge.
+        for (const Eigen::Index d : segment_fixed) start_direction(d) = 0.0;
+      }
+    }
     ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
                            model.dimension(), options.gap);
     PenalizedGrowthFamily family(model, penalty);
@@ -206,7 +229,7 @@ ContactBranchTrace trace_contact_branch(
     t0 = Clock::now();
     try {
       trace = trace_branch_along(family, start_x, start_phi, start_direction,
-                                 start_direction_parameter, fixed_dofs, segment_options,
+                                 start_direction_parameter, segment_fixed, segment_options,
                                  on_segment_sample, on_special, events, on_event);
     } catch (const PairSetViolation&) {
       violated = true;
@@ -241,10 +264,20 @@ ContactBranchTrace trace_contact_branch(
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
     out.failed_steps += trace.failed_steps;
     if (samples_in_segment == 0) {
+      // The start, an equilibrium on the previous set, may not converge on the rebuilt one
+      // where a penetrating vertex's nearest triangle changed: retry once on the union, on
+      // which the previous equilibrium still holds up to the pairs that were added.
+      if (have_sample && !keep_previous_pairs && !previous_pairs.empty()) {
+        keep_previous_pairs = true;
+        ++out.cost.union_restarts;
+        continue;
+      }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +
                     " did not converge: " + trace.message;
       break;
     }
+    keep_previous_pairs = false;
+    previous_pairs = pairs;
     if (trace.reached_bound && trace.message != "reached max_steps") {
       out.reached_bound = true;
       out.message = trace.message;

@@ -43,6 +43,18 @@ struct ContactBranchOptions {
   /// Which near pairs enter (default as the Ipopt solve: vertex-triangle, nearest triangle).
   NearPairSelection selection{false, true};
   int steps_per_segment = 6;  ///< steps before the pair set is rebuilt, >= 1
+  /// If > 0, fixed_dofs must be the six rigid-motion pins (rigid_motion_pinned_dofs): a
+  /// segment whose start state holds them with a condition number above this
+  /// (pinned_rigid_motion_condition) chooses them again on that state (vertex A of
+  /// fixed_dofs[0] kept, B and C among the sheet vertices by their current positions), and
+  /// keeps the new ones until they degrade in turn. Pins chosen on the reference can become
+  /// nearly collinear as the sheet deforms: on the h = 0.02 symmetric cone at 7.03 the rim
+  /// vertex pinned for the spin about AB has come round to within 0.019 of that axis. The
+  /// spin is then almost free, the Hessian has a near-zero eigenvalue (8.6e-7 N/m, 99.8 %
+  /// rigid), and Newton's corrections run along it far enough to flip pairs in and out of
+  /// contact. Pins are changed only where needed because the negative count of a state
+  /// next to a special point, off equilibrium by the tolerance, can depend on the gauge.
+  double repin_above_condition = 0.0;
   /// A pair outside the segment's set closer than contact_distance - violation_tolerance
   /// ends the segment at the previous sample, which is retried with a rebuilt set (>= 0).
   double violation_tolerance = 0.0;
@@ -76,6 +88,9 @@ struct ContactBranchCost {
   double sample_seconds = 0.0;       ///< energies, slopes and forces of the samples
   int segments = 0;
   int rebuilds_after_violation = 0;
+  int repinnings = 0;  ///< segments that chose new rigid-motion pins (repin_above_condition)
+  /// Segment starts retried on the union of the previous and the rebuilt pair set.
+  int union_restarts = 0;
 };
 
 /// Result of trace_contact_branch. `last` is always the last converged sample (the start if

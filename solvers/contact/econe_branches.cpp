@@ -11,6 +11,7 @@
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/newton/newton_solver.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace growshell {
@@ -58,6 +59,14 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
   if (!(options.symmetric_end > phi0))
     throw std::invalid_argument("EconeBranchOptions::symmetric_end must exceed the start phi_e");
   const ContactBranchOptions& o = options.contact;
+  // Rigid-motion pins for the states the search starts from (see
+  // ContactBranchOptions::repin_above_condition).
+  const auto pins_at = [&](const Eigen::VectorXd& x) {
+    if (!(o.repin_above_condition > 0.0)) return fixed_dofs;
+    return well_conditioned_pins(
+        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3),
+        fixed_dofs, model.sheet_vertices(), o.repin_above_condition);
+  };
   const double h_c = o.contact_distance;
   const auto note = [&](const std::string& text) {
     if (callbacks.on_note) callbacks.on_note(text);
@@ -132,7 +141,8 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
   } else if (options.skewed_start == SkewedStart::BranchPoint && out.stability_loss &&
              out.stability_loss->kind == SpecialPoint::Kind::BranchPoint) {
     const SpecialPoint& bp = *out.stability_loss;
-    const Eigenpairs critical = modes_at(model, proxy, bp.x, bp.parameter, fixed_dofs, o, true, 1);
+    const std::vector<Eigen::Index> pins = pins_at(bp.x);
+    const Eigenpairs critical = modes_at(model, proxy, bp.x, bp.parameter, pins, o, true, 1);
     const double lambda = critical.values[0];
     const Eigen::VectorXd mode = critical.vectors.col(0);
     out.skewed_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
@@ -146,15 +156,16 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     // Off the branch point by h_c / 4 at the mode's largest entry: far enough for the corrector
     // to stay off the symmetric branch, close enough to land on the bifurcating one.
     const double offset = 0.25 * h_c / mode.cwiseAbs().maxCoeff();
-    out.skewed_up = trace_contact_branch(model, proxy, bp.x + offset * mode, bp.parameter, mode,
-                                         0.0, fixed_dofs, skewed_options,
-                                         on_skewed_sample(up_energy), on_skewed_special);
+    out.skewed_up =
+        trace_contact_branch(model, proxy, bp.x + offset * mode, bp.parameter, mode, 0.0, pins,
+                             skewed_options, on_skewed_sample(up_energy), on_skewed_special);
   } else {
     const BranchSample top = out.symmetric.last.sample;
+    const std::vector<Eigen::Index> pins = pins_at(top.x);
     // The lowest modes: the skew is not always the lowest (a nearly free orientation mode of
     // the fold pattern can lie below it), so every negative mode among the lowest three, or
     // the lowest if none is negative, is tried in both directions.
-    const Eigenpairs lowest = modes_at(model, proxy, top.x, top.parameter, fixed_dofs, o, false, 3);
+    const Eigenpairs lowest = modes_at(model, proxy, top.x, top.parameter, pins, o, false, 3);
     model.set_excess_angle(top.parameter);
     {
       PenalizedShell near(model, proxy, near_penalty_pairs(proxy, top.x, o), o);
@@ -173,8 +184,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
         Eigen::VectorXd y = top.x + sign * (options.push * h_c / mode.cwiseAbs().maxCoeff()) * mode;
         double energy = 0.0;
         std::string why;
-        if (!relax_with_contact(model, proxy, y, fixed_dofs, o, options.relaxation, &energy,
-                                &why)) {
+        if (!relax_with_contact(model, proxy, y, pins, o, options.relaxation, &energy, &why)) {
           m << " mode " << k << " push " << sign << ": " << why << ";";
           continue;
         }
@@ -197,7 +207,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       const auto t_ipopt = Clock::now();
       model.set_excess_angle(top.parameter);
       const ContactSolveResult check =
-          solve_contact_equilibrium(model, proxy, best, fixed_dofs, *options.verify_with_ipopt);
+          solve_contact_equilibrium(model, proxy, best, pins, *options.verify_with_ipopt);
       out.ipopt_checked = true;
       out.ipopt_converged = check.converged;
       out.ipopt_message = check.message;
@@ -223,13 +233,13 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       ContactBranchOptions down_options = skewed_options;
       down_options.arclength.parameter_max = top.parameter;
       out.skewed_down = trace_contact_branch(
-          model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0,
-          fixed_dofs, down_options, on_skewed_sample(down_energy), on_skewed_special);
+          model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0, pins,
+          down_options, on_skewed_sample(down_energy), on_skewed_special);
       note("skewed branch, downwards: " + out.skewed_down.message);
       if (options.skewed_end > top.parameter) {
         out.skewed_up = trace_contact_branch(
-            model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), 1.0,
-            fixed_dofs, skewed_options, on_skewed_sample(up_energy), on_skewed_special);
+            model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), 1.0, pins,
+            skewed_options, on_skewed_sample(up_energy), on_skewed_special);
         note("skewed branch, upwards: " + out.skewed_up.message);
       }
     }

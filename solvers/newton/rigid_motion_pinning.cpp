@@ -1,7 +1,9 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -103,6 +105,53 @@ std::vector<Eigen::Index> mirror_axis_pinned_dofs(const Eigen::Ref<const Eigen::
     if (offset(v).y() > offset(along_y).y()) along_y = v;
   }
   return rigid_motion_pinned_dofs(positions, {nearest, along_x, along_y});
+}
+
+}  // namespace growshell
+
+namespace growshell {
+
+double pinned_rigid_motion_condition(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                     const std::vector<Eigen::Index>& dofs) {
+  if (dofs.size() != 6)
+    throw std::invalid_argument("pinned_rigid_motion_condition: need 6 dofs, got " +
+                                std::to_string(dofs.size()));
+  for (const Eigen::Index d : dofs)
+    if (d < 0 || d >= 3 * positions.rows())
+      throw std::invalid_argument("pinned_rigid_motion_condition: dof " + std::to_string(d) +
+                                  " is out of range [0, " + std::to_string(3 * positions.rows()) +
+                                  ")");
+  const Eigen::RowVector3d centroid = positions.colwise().mean();
+  const double scale = std::sqrt((positions.rowwise() - centroid).rowwise().squaredNorm().mean());
+  if (!(scale > 0.0)) return std::numeric_limits<double>::infinity();
+  Eigen::Matrix<double, 6, 6> m;
+  for (int r = 0; r < 6; ++r) {
+    const Eigen::Index v = dofs[static_cast<std::size_t>(r)] / 3;
+    const int c = static_cast<int>(dofs[static_cast<std::size_t>(r)] % 3);
+    const Eigen::Vector3d p = (positions.row(v) - centroid).transpose() / scale;
+    for (int k = 0; k < 3; ++k) {
+      m(r, k) = c == k ? 1.0 : 0.0;
+      m(r, 3 + k) = Eigen::Vector3d::Unit(k).cross(p)(c);
+    }
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(m);
+  const double smallest = svd.singularValues()(5);
+  return smallest > 0.0 ? svd.singularValues()(0) / smallest
+                        : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace growshell
+
+namespace growshell {
+
+std::vector<Eigen::Index> well_conditioned_pins(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                                const std::vector<Eigen::Index>& pins,
+                                                const std::vector<int>& candidate_vertices,
+                                                double max_condition) {
+  if (pinned_rigid_motion_condition(positions, pins) <= max_condition) return pins;
+  std::vector<int> candidates{static_cast<int>(pins.front() / 3)};
+  candidates.insert(candidates.end(), candidate_vertices.begin(), candidate_vertices.end());
+  return rigid_motion_pinned_dofs(positions, candidates);
 }
 
 }  // namespace growshell

@@ -33,6 +33,27 @@ std::vector<Eigen::Index> rigid_motion_pinned_dofs(
 
 namespace growshell {
 
+/// How well the six `dofs` (vertex-major layout) hold the rigid motions of the vertex set
+/// `positions`: the 2-norm condition number of the 6 x 6 matrix of the dofs' components of
+/// the six rigid velocity fields (translations; rotations about the centroid, scaled by the
+/// RMS distance from it so that all six are lengths). Near 1-10 for well-spread pins;
+/// infinite if the dofs leave a rigid motion free. Throws std::invalid_argument unless there
+/// are exactly six dofs, all in range.
+double pinned_rigid_motion_condition(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                     const std::vector<Eigen::Index>& dofs);
+
+/// `pins` (six rigid-motion pins as rigid_motion_pinned_dofs returns them) if they hold the
+/// rigid motions of `positions` with pinned_rigid_motion_condition <= max_condition; else new
+/// pins chosen on `positions` by rigid_motion_pinned_dofs with the vertex of pins[0] as
+/// anchor and `candidate_vertices` for the other two. Pins chosen on a reference shape lose
+/// their lever arm when the body deforms far (e.g. a rim vertex carried round next to the
+/// axis through the other two); the spin they should stop is then nearly free. Throws as the
+/// two functions it calls.
+std::vector<Eigen::Index> well_conditioned_pins(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                                const std::vector<Eigen::Index>& pins,
+                                                const std::vector<int>& candidate_vertices,
+                                                double max_condition);
+
 /// Rigid-motion pins (as rigid_motion_pinned_dofs) on three vertices chosen among
 /// `sheet_vertices` so that they respect a mirror symmetry about the x-axis through `center`:
 /// the vertex nearest `center` and the vertices farthest along +x and along +y from it, which

@@ -19,10 +19,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "libshell/assembly/shell_model.hpp"
@@ -388,6 +391,76 @@ TEST(ContactBranch, BadOptionsAreRejectedByName) {
   o = d.options();
   o.steps_per_segment = 0;
   expect_message(o, "steps_per_segment");
+  o = d.options();
+  o.repin_above_condition = -1.0;
+  expect_message(o, "repin_above_condition");
+  o = d.options();
+  o.repin_above_condition = 20.0;
+  try {
+    trace_contact_branch(d.model, d.proxy, x, 0.0, Eigen::VectorXd::Zero(x.size()), 1.0,
+                         {d.pinned[0], d.pinned[1], d.pinned[2]}, o);
+    ADD_FAILURE() << "no exception for three pins with repin_above_condition";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("six rigid-motion pins"), std::string::npos) << e.what();
+  }
+}
+
+// Choosing new rigid-motion pins at every segment (repin_above_condition = 1: every pin set
+// exceeds it) changes the gauge, not the branch: the total energy of every sample lies on the
+// branch traced with fixed pins (cubic Hermite interpolation between its samples with the
+// exact slopes dE/dphi_e, whose own error at these steps is below 1e-9 relative).
+TEST(ContactBranch, RepinningChangesTheGaugeNotTheBranch) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.arclength.parameter_max = 5.5;
+  o.arclength.max_steps = 40;
+  const auto trace = [&](double repin, int* repinnings) {
+    ContactBranchOptions r = o;
+    r.repin_above_condition = repin;
+    std::vector<ContactBranchSample> samples;
+    const ContactBranchTrace t = trace_contact_branch(
+        d.model, d.proxy, x, GrownDisc::kStart, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, r,
+        [&](const ContactBranchSample& s) { samples.push_back(s); });
+    EXPECT_TRUE(t.reached_bound) << t.message;
+    *repinnings = t.cost.repinnings;
+    return samples;
+  };
+  int fixed_repinnings = 0, repinnings = 0;
+  const std::vector<ContactBranchSample> fixed = trace(0.0, &fixed_repinnings);
+  const std::vector<ContactBranchSample> moved = trace(1.0, &repinnings);
+  EXPECT_EQ(fixed_repinnings, 0);
+  EXPECT_GE(repinnings, 2);
+  ASSERT_GE(fixed.size(), 4u);
+  const auto total = [](const ContactBranchSample& s) {
+    return s.stretching_energy + s.bending_energy + s.penalty_energy;
+  };
+  int compared = 0;
+  double worst = 0.0;
+  for (const ContactBranchSample& m : moved) {
+    const double phi = m.sample.parameter;
+    for (std::size_t i = 0; i + 1 < fixed.size(); ++i) {
+      const ContactBranchSample &a = fixed[i], &b = fixed[i + 1];
+      const double pa = a.sample.parameter, pb = b.sample.parameter;
+      if (!(phi >= pa && phi <= pb) || pb <= pa) continue;
+      const double dp = pb - pa, t = (phi - pa) / dp;
+      const double h00 = 2 * t * t * t - 3 * t * t + 1, h10 = t * t * t - 2 * t * t + t;
+      const double h01 = -2 * t * t * t + 3 * t * t, h11 = t * t * t - t * t;
+      const double interpolated =
+          h00 * total(a) + h10 * dp * a.energy_slope + h01 * total(b) + h11 * dp * b.energy_slope;
+      worst = std::max(worst, std::abs(total(m) - interpolated) / std::abs(total(m)));
+      EXPECT_EQ(m.sample.negative_eigenvalues, a.sample.negative_eigenvalues) << "phi_e " << phi;
+      ++compared;
+      break;
+    }
+  }
+  EXPECT_GE(compared, 3);
+  EXPECT_LT(worst, 1e-7);
+  RecordProperty("repinned_energy_relative_error", std::to_string(worst));
+  std::printf(
+      "repinned trace: %d repinnings, %d samples compared, worst relative energy "
+      "difference %.2e\n",
+      repinnings, compared, worst);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <random>
 #include <set>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/sparse_objective.hpp"
 
@@ -251,6 +254,71 @@ TEST(RigidMotionPinning, CollinearOrInvalidCandidatesThrow) {
   EXPECT_THROW(rigid_motion_pinned_dofs(p, {0, 1, 5}), std::invalid_argument);
   EXPECT_THROW(rigid_motion_pinned_dofs(p, {2, 2, 2}), std::invalid_argument);
   EXPECT_NO_THROW(rigid_motion_pinned_dofs(p, {0, 1, 2}));
+}
+
+TEST(RigidMotionPinning, PinsChosenOnTheReferenceLoseTheirLeverArmWhenTheRimWrapsRound) {
+  // A disc whose points move round the axis in proportion to their angle, as in an e-cone
+  // with excess angle 2 pi w: theta -> (1 + w) theta. With w = 1 the rim point at 90 degrees
+  // (the reference pin C of mirror_axis_pinned_dofs) comes round to 180 degrees, in line with
+  // the centre A and the rim point at 0 degrees (B): the spin about AB is then nearly free.
+  // Pins chosen again on the current positions (A kept) stay well conditioned.
+  DiscMeshOptions mo;
+  mo.rings = 12;
+  const TriangleMesh mesh = make_disc_mesh(mo);
+  std::vector<int> sheet;
+  for (int v = 0; v < mesh.vertices.rows(); ++v)
+    if (mesh.vertices.row(v).head<2>().norm() <= 1.0 + 1e-9) sheet.push_back(v);
+  const auto wrapped = [&](double w) {
+    Eigen::MatrixX3d p(mesh.vertices.rows(), 3);
+    for (int v = 0; v < p.rows(); ++v) {
+      const double r = mesh.vertices.row(v).head<2>().norm();
+      const double t = std::atan2(mesh.vertices(v, 1), mesh.vertices(v, 0)) * (1.0 + w);
+      p.row(v) << r * std::cos(t), r * std::sin(t), 0.3 * r * r * std::cos(2.0 * t);
+    }
+    return p;
+  };
+  const std::vector<Eigen::Index> reference_pins =
+      mirror_axis_pinned_dofs(mesh.vertices, sheet, Eigen::Vector3d::Zero());
+  const double flat_reference = pinned_rigid_motion_condition(wrapped(0.0), reference_pins);
+  const double wrapped_reference = pinned_rigid_motion_condition(wrapped(1.0), reference_pins);
+  // The library's condition number against the test's own (rotations about the centroid,
+  // unscaled; the disc's RMS radius is 0.7, so the two differ but agree on degeneracy).
+  const auto unscaled_condition = [](const Eigen::MatrixX3d& p,
+                                     const std::vector<Eigen::Index>& pins) {
+    const Eigen::MatrixXd fields = rigid_fields(p);
+    Eigen::MatrixXd restricted(6, 6);
+    for (int r = 0; r < 6; ++r) restricted.row(r) = fields.row(pins[static_cast<std::size_t>(r)]);
+    return condition_number(restricted);
+  };
+  EXPECT_LT(unscaled_condition(wrapped(0.0), reference_pins), 1e2);
+  EXPECT_GT(unscaled_condition(wrapped(1.0), reference_pins), 1e6);
+  EXPECT_LT(flat_reference, 1e2);
+  EXPECT_GT(wrapped_reference, 1e6);
+
+  // well_conditioned_pins keeps good pins and replaces degenerate ones, keeping the anchor.
+  EXPECT_EQ(well_conditioned_pins(wrapped(0.0), reference_pins, sheet, 20.0), reference_pins);
+  const std::vector<Eigen::Index> repinned =
+      well_conditioned_pins(wrapped(1.0), reference_pins, sheet, 20.0);
+  const double wrapped_repinned = pinned_rigid_motion_condition(wrapped(1.0), repinned);
+  EXPECT_NE(repinned, reference_pins);
+  EXPECT_EQ(repinned.front(), reference_pins.front());
+  EXPECT_LT(wrapped_repinned, 20.0);
+  RecordProperty("condition_reference_pins_flat", scientific(flat_reference));
+  RecordProperty("condition_reference_pins_wrapped", scientific(wrapped_reference));
+  RecordProperty("condition_repinned_wrapped", scientific(wrapped_repinned));
+  std::printf(
+      "pinned rigid-motion condition: reference pins %.3g (flat), %.3g (wrapped); "
+      "repinned %.3g\n",
+      flat_reference, wrapped_reference, wrapped_repinned);
+
+  // Rotations scaled by the RMS radius: the number does not depend on the unit of length.
+  Eigen::MatrixX3d big = wrapped(0.3);
+  const double in_metres = pinned_rigid_motion_condition(big, repinned);
+  big *= 1000.0;
+  EXPECT_NEAR(pinned_rigid_motion_condition(big, repinned), in_metres, 1e-9 * in_metres);
+  EXPECT_THROW(pinned_rigid_motion_condition(big, {0, 1, 2}), std::invalid_argument);
+  EXPECT_THROW(pinned_rigid_motion_condition(big, {0, 1, 2, 3, 4, 3 * big.rows()}),
+               std::invalid_argument);
 }
 
 }  // namespace
