@@ -115,6 +115,8 @@ struct BranchTrace {
   std::string message;     ///< why the trace ended
   int steps = 0;
   int failed_steps = 0;
+  /// Samples that landed just past a special point and were replaced by a step over it.
+  int branch_point_steps_over = 0;
   TraceCost cost;  ///< of this call (the branch-point search and events included)
 };
 

@@ -177,6 +177,38 @@ TEST(PseudoArclength, FindsTheBranchPointsOfSimpleAndDoublePitchforks) {
   }
 }
 
+// A sample that lands just past a branch point (where the tangent is ill-determined) is
+// replaced by one as far past the point as the previous sample lay before it.
+TEST(PseudoArclength, StepsOverABranchPointInsteadOfStoppingJustPastIt) {
+  for (const double start : {-0.0999, -0.15}) {
+    ToyFamily family(ToyFamily::Kind::Pitchfork, 5);
+    ArclengthOptions o = toy_options();
+    o.initial_step = 0.1;
+    o.max_step = 0.25;
+    o.parameter_max = 0.3;
+    std::vector<double> lambdas;
+    const BranchTrace trace =
+        trace_branch(family, Eigen::VectorXd::Zero(family.dimension()), start, +1, {}, o,
+                     [&](const BranchSample& p) { lambdas.push_back(p.parameter); });
+    ASSERT_EQ(trace.special_points.size(), 1u) << trace.message;
+    EXPECT_NEAR(trace.special_points[0].parameter, 0.0, 1e-6);
+    ASSERT_GE(lambdas.size(), 3u);
+    // The trivial branch (x = 0): lambda = start + 0.1 k along the arclength.
+    if (start == -0.0999) {
+      // The step from -0.0999 would stop at 1e-4 past the point: taken to 0.0999 instead.
+      EXPECT_EQ(trace.branch_point_steps_over, 1);
+      EXPECT_NEAR(lambdas[1], 0.0999, 1e-6);
+    } else {
+      // From -0.05 the (grown) step lands further past the point than it started before it:
+      // kept.
+      EXPECT_EQ(trace.branch_point_steps_over, 0);
+      EXPECT_NEAR(lambdas[1], -0.05, 1e-6);
+      EXPECT_GT(lambdas[2], 0.05 - 1e-6);
+    }
+    for (std::size_t i = 1; i < lambdas.size(); ++i) EXPECT_GT(lambdas[i], lambdas[i - 1]);
+  }
+}
+
 TEST(PseudoArclength, FlatBranchOfTheGrowingDiscLosesStabilityAtADoubleBranchPoint) {
   // The flat disc under circumferential growth: in-plane equilibria until the first
   // out-of-plane modes (n = 2, a pair cos/sin 2 theta) become unstable together.
