@@ -7,7 +7,7 @@
 // 2. The symmetric branch is followed by pseudo-arclength continuation with the contact penalty
 //    (solvers/contact/contact_branch.hpp) up to --phi-max, also where it is unstable; first
 //    contact and the loss of stability are located on it.
-// 3. The symmetric state at --phi-max is pushed along its lowest mode and relaxed; a
+// 3. The symmetric state at --skew-at is pushed along its lowest modes and relaxed; a
 //    lower-energy state found so is the skewed cone, followed down in phi_e to where its branch
 //    ends and up to --phi-wind (beyond 4 pi). (--skew-from branch-point instead enters the
 //    branch born at the symmetric branch's stability loss.)
@@ -59,10 +59,16 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   SCENE.json              scene (default: the paper's disc, R = 1, h = 0.02, Y = 1e4, nu = 0.3)
   --h H                   thickness (overrides the scene)
   --rings N               mesh rings
-  --phi-max P             end of the symmetric branch and start of the skewed one (default 10)
+  --phi-max P             end of the symmetric branch (default 10)
+  --skew-at P             the skewed search starts from the symmetric state at P (default 6.6,
+                          past the stability loss of every thickness traced so far; from the
+                          state at 10 the skewed cone is a winding away, see docs/contact.md)
   --phi-wind P            follow the skewed branch forward up to P, and beyond its end grow
                           on by minimisation (DIR/branch_grown.csv; default 13; 0 = skip)
-  --phi-contact-start P   contact-free cone traced from flat up to P (default 5.5)
+  --phi-contact-start P   contact-free cone traced from flat up to P (default 5.2: at h = 0.02
+                          the trace from there passes the stability loss on the symmetric
+                          branch; from 5.5 it turns onto the bifurcating one, see
+                          docs/validation.md; an event symmetry_lost reports such a switch)
   --start STATE           start from a saved contact-free state instead (trace_disc's
                           DIR/states/point_NNNNN.txt of the same scene)
   --stiffness-factor F    penalty stiffness k = F Y l^2 / h (l: proxy spacing; default 10)
@@ -83,8 +89,8 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           within one step
   --ipopt-check 0         skip the Ipopt check of the relaxed skewed state (hard constraints)
   --skewed 0              trace the symmetric branch only
-  --skew-from WHERE       top (default): relax the last symmetric state (at --phi-max) pushed
-                          along its lowest mode and follow what it finds down and up;
+  --skew-from WHERE       top (default): relax the symmetric state at --skew-at pushed along
+                          its lowest modes and follow what it finds down and up;
                           branch-point: enter the branch born at the symmetric branch's
                           stability loss along its critical mode
   --out DIR               output directory (default out/contact)
@@ -116,8 +122,9 @@ int run(int argc, char** argv) {
   const std::string rings = cl.text("--rings", "");
   if (!rings.empty()) apply_override(scene, "mesh.rings", rings);
   const double phi_max = cl.number("--phi-max", 10.0);
+  const double skew_at = cl.number("--skew-at", 6.6);
   const double phi_wind = cl.number("--phi-wind", 13.0);
-  const double phi_contact_start = cl.number("--phi-contact-start", 5.5);
+  const double phi_contact_start = cl.number("--phi-contact-start", 5.2);
   const std::string start_file = cl.text("--start", "");
   const double stiffness_factor = cl.number("--stiffness-factor", 10.0);
   const int segments = cl.integer("--segments", 1);
@@ -142,6 +149,7 @@ int run(int argc, char** argv) {
   if (!(stiffness_factor > 0.0)) throw std::invalid_argument("--stiffness-factor must be > 0");
   if (!(max_step > 0.0)) throw std::invalid_argument("--max-step must be > 0");
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
+  if (!(skew_at > 0.0)) throw std::invalid_argument("--skew-at must be > 0");
   if (!(phi_contact_start > 0.0 && phi_contact_start < phi_max))
     throw std::invalid_argument("--phi-contact-start must be in (0, phi-max)");
   if (scene.geometry.shape != SceneShape::Disc && start_file.empty())
@@ -260,6 +268,7 @@ int run(int argc, char** argv) {
              "contact_force,E_penalty,dE_dphi,arclength,corrector_iterations,pairs\n";
     std::filesystem::create_directories(out_dir + "/states_" + name);
   };
+  bool symmetry_lost = false;
   const auto write_sample = [&](BranchOutput& b, const ContactBranchSample& s) {
     double gamma = std::numeric_limits<double>::quiet_NaN(), force = 0.0;
     std::unique_ptr<ContactGapConstraints> gaps;
@@ -273,6 +282,13 @@ int run(int argc, char** argv) {
         const std::vector<ContactZone> zones =
             contact_zones(*gaps, s.sample.x, s.forces, 0.1 * R, 1e-3, std::numbers::pi / 6);
         gamma = contact_plane_angle(zones);
+      }
+      // The symmetric branch keeps gamma = pi/2; a trace that turned onto the bifurcating
+      // branch at a branch point shows it here first.
+      if (b.name == "symmetric" && !symmetry_lost && std::isfinite(gamma) &&
+          std::abs(gamma - 0.5 * std::numbers::pi) > 0.05) {
+        symmetry_lost = true;
+        add_event("symmetry_lost", s.sample.parameter, ", \"gamma\": " + json_number(gamma));
       }
       force = s.forces.sum();
     }
@@ -308,6 +324,7 @@ int run(int argc, char** argv) {
   branches.symmetric_end = phi_max;
   branches.skewed_end = phi_wind > phi_max ? phi_wind : phi_max;
   branches.skewed_start = skew_from == "top" ? SkewedStart::Top : SkewedStart::BranchPoint;
+  branches.skew_search_at = skew_at;
   branches.trace_skewed = skewed;
   // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h, on
   // vertex-triangle and edge-edge pairs (the penalty sees vertex-triangle pairs only, so the

@@ -91,6 +91,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
                               s.stretching_energy + s.bending_energy + s.penalty_energy,
                               s.energy_slope};
   };
+  BranchSample search_start;  // Top: the sample the skewed search starts from
   ContactBranchOptions symmetric_options = o;
   symmetric_options.arclength.parameter_min = phi0 - 1.0;
   symmetric_options.arclength.parameter_max = options.symmetric_end;
@@ -100,6 +101,8 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       symmetric_options,
       [&](const ContactBranchSample& s) {
         symmetric_energy.push_back(energy_of(s));
+        if (search_start.x.size() == 0 && s.sample.parameter >= options.skew_search_at)
+          search_start = s.sample;
         if (callbacks.on_sample) callbacks.on_sample(EconeBranch::Symmetric, s);
       },
       [&](const SpecialPoint& sp) {
@@ -160,7 +163,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
         trace_contact_branch(model, proxy, bp.x + offset * mode, bp.parameter, mode, 0.0, pins,
                              skewed_options, on_skewed_sample(up_energy), on_skewed_special);
   } else {
-    const BranchSample top = out.symmetric.last.sample;
+    const BranchSample top = search_start.x.size() > 0 ? search_start : out.symmetric.last.sample;
     const std::vector<Eigen::Index> pins = pins_at(top.x);
     // The lowest modes: the skew is not always the lowest (a nearly free orientation mode of
     // the fold pattern can lie below it), so every negative mode among the lowest three, or

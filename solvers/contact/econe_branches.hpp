@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,11 @@ struct EconeBranchOptions {
   int max_steps_per_branch = 600;
   bool trace_skewed = true;  ///< false: the symmetric branch only
   SkewedStart skewed_start = SkewedStart::Top;
+  /// Top: the symmetric state pushed and relaxed is the first sample at or beyond this phi_e
+  /// (NaN: the branch's last sample). Just past the stability loss the skewed state is a
+  /// short slide away; from the symmetric state at 10 (h = 0.02, six negative modes) it is a
+  /// winding of the sheet, and no unbounded Newton relaxation reached it in 400 iterations.
+  double skew_search_at = std::numeric_limits<double>::quiet_NaN();
   /// Push along the lowest mode, in units of the contact distance at the mode's largest entry
   /// (small enough that no layer is pushed through another).
   double push = 0.5;

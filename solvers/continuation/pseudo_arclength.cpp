@@ -303,10 +303,11 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
       // before it can swing onto the other branch or back, and even look like a fold (on a
       // penalised contact branch this ran as a dozen spurious folds within 3e-4 of the
       // stability loss). Step over instead: from p to as far past the point as p lies before
-      // it, accepted if the count is the same and the tangent still agrees with p's.
-      if (step - s_hi < s_hi && 2.0 * s_hi <= options.max_step) {
+      // it, and at least half the largest step past it, accepted if the count is the
+      // same and the tangent still agrees with p's.
+      const double s_over = s_hi + std::max(s_hi, 0.5 * options.max_step);
+      if (step - s_hi < std::max(s_hi, 0.25 * options.max_step) && s_over <= options.max_step) {
         BranchSample over;
-        const double s_over = 2.0 * s_hi;
         if (solver.correct(p.x + s_over * p.tangent_state,
                            p.parameter + s_over * p.tangent_parameter, p.tangent_state,
                            p.tangent_parameter, over) &&

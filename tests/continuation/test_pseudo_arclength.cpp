@@ -195,9 +195,10 @@ TEST(PseudoArclength, StepsOverABranchPointInsteadOfStoppingJustPastIt) {
     ASSERT_GE(lambdas.size(), 3u);
     // The trivial branch (x = 0): lambda = start + 0.1 k along the arclength.
     if (start == -0.0999) {
-      // The step from -0.0999 would stop at 1e-4 past the point: taken to 0.0999 instead.
+      // The step from -0.0999 would stop at 1e-4 past the point: taken on to half the largest
+      // step (0.125) past it instead.
       EXPECT_EQ(trace.branch_point_steps_over, 1);
-      EXPECT_NEAR(lambdas[1], 0.0999, 1e-6);
+      EXPECT_NEAR(lambdas[1], 0.125, 1e-6);
     } else {
       // From -0.05 the (grown) step lands further past the point than it started before it:
       // kept.
