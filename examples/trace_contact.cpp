@@ -409,7 +409,7 @@ int run(int argc, char** argv) {
           << ", \"max_state_difference\": " << json_number(result.ipopt_state_difference)
           << ", \"min_distance\": " << json_number(result.ipopt_min_distance)
           << ", \"seconds\": " << json_number(result.ipopt_seconds);
-    add_event("ipopt_check", result.symmetric.last.sample.parameter, extra.str());
+    add_event("ipopt_check", result.skew_search_parameter, extra.str());
   }
   for (const EnergyCrossing& c : result.crossings) {
     std::ostringstream extra;

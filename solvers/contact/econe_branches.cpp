@@ -164,6 +164,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
                              skewed_options, on_skewed_sample(up_energy), on_skewed_special);
   } else {
     const BranchSample top = search_start.x.size() > 0 ? search_start : out.symmetric.last.sample;
+    out.skew_search_parameter = top.parameter;
     const std::vector<Eigen::Index> pins = pins_at(top.x);
     // The lowest modes: the skew is not always the lowest (a nearly free orientation mode of
     // the fold pattern can lie below it), so every negative mode among the lowest three, or
@@ -262,6 +263,17 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     std::sort(
         out.crossings.begin(), out.crossings.end(),
         [](const EnergyCrossing& a, const EnergyCrossing& b) { return a.parameter < b.parameter; });
+    // Both skewed traces can run over the same stretch of the branch (the downward one back up
+    // past its fold, the upward one back down past its upper fold): one crossing each time.
+    std::vector<EnergyCrossing> distinct;
+    for (const EnergyCrossing& c : out.crossings) {
+      if (!distinct.empty() && std::abs(c.parameter - distinct.back().parameter) < 1e-5) {
+        if (c.error_estimate < distinct.back().error_estimate) distinct.back() = c;
+        continue;
+      }
+      distinct.push_back(c);
+    }
+    out.crossings = std::move(distinct);
   }
   return out;
 }

@@ -85,7 +85,9 @@ struct EconeBranchResult {
   std::string skewed_message;  ///< how the skewed branch was found, or why not
   double skewed_relaxed_energy = 0.0;    ///< J, at the relaxed skewed state (Top)
   double symmetric_top_energy = 0.0;     ///< J, the symmetric state it was compared with
+  double skew_search_parameter = 0.0;    ///< phi_e of that state (Top)
   /// Energy crossings of the two branches (E_s + E_b + P), by parameter: phi_e^crit by energy.
+  /// A crossing met by both skewed traces (within 1e-5) is listed once.
   std::vector<EnergyCrossing> crossings;
   double skewed_search_seconds = 0.0;
   /// The Ipopt check of the relaxed skewed state (EconeBranchOptions::verify_with_ipopt).
