@@ -497,9 +497,7 @@ int run(int argc, char** argv) {
     o << "{\"steps\": " << t.steps << ", \"failed_steps\": " << t.failed_steps
       << ", \"segments\": " << t.cost.segments
       << ", \"rebuilds\": " << t.cost.rebuilds_after_violation
-      << ", \"repinnings\": " << t.cost.repinnings
-      << ", \"union_restarts\": " << t.cost.union_restarts
-      << ", \"linearizations\": " << c.linearizations
+      << ", \"repinnings\": " << t.cost.repinnings << ", \"linearizations\": " << c.linearizations
       << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
       << ", \"assembly_seconds\": " << c.assembly_seconds
       << ", \"factorization_seconds\": " << c.factorization_seconds

@@ -146,14 +146,12 @@ ContactBranchTrace trace_contact_branch(
   double margin = options.candidate_margin;
   bool have_sample = false;  // out.last holds a converged sample
   int retries = 0;
-  ContactCandidates previous_pairs;
-  bool keep_previous_pairs = false;  // the start did not converge on the rebuilt set alone
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
-    ContactCandidates pairs = near_contact_pairs(proxy, start_x, options.contact_distance + margin,
-                                                 options.exclusion_radius, options.selection);
-    if (keep_previous_pairs) pairs = merge_contact_pairs(pairs, previous_pairs);
+    const ContactCandidates pairs =
+        near_contact_pairs(proxy, start_x, options.contact_distance + margin,
+                           options.exclusion_radius, options.selection);
     out.cost.pair_search_seconds += seconds_since(t0);
     if (options.repin_above_condition > 0.0) {
       const std::vector<Eigen::Index> pins = well_conditioned_pins(
@@ -264,20 +262,10 @@ ContactBranchTrace trace_contact_branch(
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
     out.failed_steps += trace.failed_steps;
     if (samples_in_segment == 0) {
-      // The start, an equilibrium on the previous set, may not converge on the rebuilt one
-      // where a penetrating vertex's nearest triangle changed: retry once on the union, on
-      // which the previous equilibrium still holds up to the pairs that were added.
-      if (have_sample && !keep_previous_pairs && !previous_pairs.empty()) {
-        keep_previous_pairs = true;
-        ++out.cost.union_restarts;
-        continue;
-      }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +
                     " did not converge: " + trace.message;
       break;
     }
-    keep_previous_pairs = false;
-    previous_pairs = pairs;
     if (trace.reached_bound && trace.message != "reached max_steps") {
       out.reached_bound = true;
       out.message = trace.message;

@@ -89,8 +89,6 @@ struct ContactBranchCost {
   int segments = 0;
   int rebuilds_after_violation = 0;
   int repinnings = 0;  ///< segments that chose new rigid-motion pins (repin_above_condition)
-  /// Segment starts retried on the union of the previous and the rebuilt pair set.
-  int union_restarts = 0;
 };
 
 /// Result of trace_contact_branch. `last` is always the last converged sample (the start if
