@@ -330,7 +330,9 @@ TEST(PseudoArclength, SwitchesFromTheFlatBranchOntoTheTwoAndThreeFoldCones) {
     // the solves' error). n = 3: on the hexagonal lattice cos 3 theta and sin 3 theta belong
     // to different symmetry classes and split, and the inverse iteration at the located point
     // ends on the sine member (asymmetry 2: the cone maps onto its mirror image by a rotation).
-    if (n == 2) EXPECT_LT(asymmetry(samples.back().x), 1e-3);
+    if (n == 2) {
+      EXPECT_LT(asymmetry(samples.back().x), 1e-3);
+    }
     std::printf("n = %d: branch point phi_e = %.6f (mult %d); cone traced to phi_e = %.4f with "
                 "%d negative eigenvalues\n",
                 n, bp.parameter, bp.multiplicity, samples.back().parameter,
