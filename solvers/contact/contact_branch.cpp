@@ -111,6 +111,20 @@ bool covered(const ContactCandidates& close, const ContactCandidates& pairs) {
 
 }  // namespace
 
+std::vector<Eigen::Index> rigid_pins_for_state(const ShellModel& model,
+                                               const Eigen::Ref<const Eigen::VectorXd>& x,
+                                               const std::vector<Eigen::Index>& pins,
+                                               const ContactBranchOptions& options) {
+  if (!(options.repin_above_condition > 0.0)) return pins;
+  if (pins.size() != 6)
+    throw std::invalid_argument(
+        "repin_above_condition needs the six rigid-motion pins as fixed_dofs, got " +
+        std::to_string(pins.size()) + " dofs");
+  return well_conditioned_pins(
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3),
+      pins, model.sheet_vertices(), options.repin_above_condition);
+}
+
 ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const ContactCandidates& pairs,
@@ -132,11 +146,6 @@ ContactBranchTrace trace_contact_branch(
   if (x0.size() != model.dimension() || direction_state.size() != model.dimension())
     throw std::invalid_argument("trace_contact_branch: x0 and direction_state need " +
                                 std::to_string(model.dimension()) + " entries");
-  if (options.repin_above_condition > 0.0 && fixed_dofs.size() != 6)
-    throw std::invalid_argument(
-        "trace_contact_branch: repin_above_condition needs the six rigid-motion pins as "
-        "fixed_dofs, got " +
-        std::to_string(fixed_dofs.size()) + " dofs");
   ContactBranchTrace out;
   std::vector<Eigen::Index> segment_fixed = fixed_dofs;
   const ArclengthOptions& arc = options.arclength;
@@ -153,17 +162,13 @@ ContactBranchTrace trace_contact_branch(
         near_contact_pairs(proxy, start_x, options.contact_distance + margin,
                            options.exclusion_radius, options.selection);
     out.cost.pair_search_seconds += seconds_since(t0);
-    if (options.repin_above_condition > 0.0) {
-      const std::vector<Eigen::Index> pins = well_conditioned_pins(
-          Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(start_x.data(),
-                                                                          start_x.size() / 3, 3),
-          segment_fixed, model.sheet_vertices(), options.repin_above_condition);
-      if (pins != segment_fixed) {
-        segment_fixed = pins;
-        ++out.cost.repinnings;
-        // The tangent carried over moves only free dofs of the new gauge.
-        for (const Eigen::Index d : segment_fixed) start_direction(d) = 0.0;
-      }
+    const std::vector<Eigen::Index> pins =
+        rigid_pins_for_state(model, start_x, segment_fixed, options);
+    if (pins != segment_fixed) {
+      segment_fixed = pins;
+      ++out.cost.repinnings;
+      // The tangent carried over moves only free dofs of the new gauge.
+      for (const Eigen::Index d : segment_fixed) start_direction(d) = 0.0;
     }
     ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
                            model.dimension(), options.gap);

@@ -121,6 +121,17 @@ ContactBranchTrace trace_contact_branch(
     const std::vector<BranchEvent>& events = {},
     const std::function<void(const LocatedEvent&)>& on_event = {});
 
+/// The rigid-motion pins to hold at state x (vertex-major): `pins` if
+/// options.repin_above_condition is 0 or they hold the rigid motions of x with
+/// pinned_rigid_motion_condition at most that, else pins chosen again on x
+/// (well_conditioned_pins: the vertex of pins[0] kept, the others among the model's sheet
+/// vertices). Shared by trace_contact_branch, the skewed search and grow_with_contact. Throws
+/// std::invalid_argument if re-pinning is on and `pins` are not six dofs.
+std::vector<Eigen::Index> rigid_pins_for_state(const ShellModel& model,
+                                               const Eigen::Ref<const Eigen::VectorXd>& x,
+                                               const std::vector<Eigen::Index>& pins,
+                                               const ContactBranchOptions& options);
+
 /// The energies, slope, area and penalty forces of `sample` on the pair set `pairs` (as
 /// trace_contact_branch reports them); the model's excess angle is set to the sample's.
 ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,

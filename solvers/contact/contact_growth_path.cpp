@@ -6,7 +6,6 @@
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
-#include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace growshell {
@@ -95,11 +94,6 @@ ContactGrowthResult grow_with_contact(
   if (options.max_saddle_escapes < 0)
     throw std::invalid_argument("ContactGrowthOptions::max_saddle_escapes must be >= 0");
   const ContactBranchOptions& o = options.contact;
-  if (o.repin_above_condition > 0.0 && fixed_dofs.size() != 6)
-    throw std::invalid_argument(
-        "grow_with_contact: contact.repin_above_condition needs the six rigid-motion pins as "
-        "fixed_dofs, got " +
-        std::to_string(fixed_dofs.size()) + " dofs");
   const double direction = phi_target >= phi0 ? 1.0 : -1.0;
   ContactGrowthResult out;
   Eigen::VectorXd x = x0;
@@ -111,10 +105,7 @@ ContactGrowthResult grow_with_contact(
   while (direction * (phi_target - phi) > 1e-12) {
     // Pins whose lever arm the deformation has taken away leave a nearly free spin, whose
     // eigenvalue near zero would also blur the strict-minimum test below.
-    if (o.repin_above_condition > 0.0)
-      pins = well_conditioned_pins(Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
-                                       x.data(), x.size() / 3, 3),
-                                   pins, model.sheet_vertices(), o.repin_above_condition);
+    pins = rigid_pins_for_state(model, x, pins, o);
     const double next =
         direction > 0 ? std::min(phi + step, phi_target) : std::max(phi - step, phi_target);
     model.set_excess_angle(next);

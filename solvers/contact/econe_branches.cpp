@@ -11,7 +11,6 @@
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/newton/newton_solver.hpp"
-#include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace growshell {
@@ -59,13 +58,9 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
   if (!(options.symmetric_end > phi0))
     throw std::invalid_argument("EconeBranchOptions::symmetric_end must exceed the start phi_e");
   const ContactBranchOptions& o = options.contact;
-  // Rigid-motion pins for the states the search starts from (see
-  // ContactBranchOptions::repin_above_condition).
+  // Rigid-motion pins for the states the search starts from.
   const auto pins_at = [&](const Eigen::VectorXd& x) {
-    if (!(o.repin_above_condition > 0.0)) return fixed_dofs;
-    return well_conditioned_pins(
-        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3),
-        fixed_dofs, model.sheet_vertices(), o.repin_above_condition);
+    return rigid_pins_for_state(model, x, fixed_dofs, o);
   };
   const double h_c = o.contact_distance;
   const auto note = [&](const std::string& text) {

@@ -58,6 +58,15 @@ double condition_number(const Eigen::MatrixXd& m) {
   return s(0) / s(s.size() - 1);
 }
 
+// Condition number of the pinned dofs' rows of the rigid fields (rotations unscaled).
+double pinned_rows_condition(const Eigen::MatrixX3d& p, const std::vector<Eigen::Index>& pins) {
+  const Eigen::MatrixXd fields = rigid_fields(p);
+  Eigen::MatrixXd restricted(static_cast<Eigen::Index>(pins.size()), 6);
+  for (std::size_t r = 0; r < pins.size(); ++r)
+    restricted.row(static_cast<Eigen::Index>(r)) = fields.row(pins[r]);
+  return condition_number(restricted);
+}
+
 // E = sum over edges (|x_i - x_j| - L0)^2: invariant under translations and rotations.
 class SpringNetwork : public SparseObjective {
  public:
@@ -213,23 +222,17 @@ TEST(RigidMotionPinning, PinnedDofsControlAllRigidMotions) {
   const std::vector<Eigen::Index> pinned = rigid_motion_pinned_dofs(p, all_vertices(50));
   ASSERT_EQ(pinned.size(), 6u);
   EXPECT_EQ(std::set<Eigen::Index>(pinned.begin(), pinned.end()).size(), 6u);
-  const Eigen::MatrixXd fields = rigid_fields(p);
-  Eigen::MatrixXd restricted(6, 6);
-  for (int r = 0; r < 6; ++r) restricted.row(r) = fields.row(pinned[static_cast<std::size_t>(r)]);
-  const double cond = condition_number(restricted);
+  const double cond = pinned_rows_condition(p, pinned);
   EXPECT_LT(cond, 1e3);
   RecordProperty("condition_number", scientific(cond));
 
   // Control: A and B fully pinned leave the spin about AB free -> singular.
-  Eigen::MatrixXd bad(6, 6);
   const Eigen::Index a = pinned[0] / 3;
   const Eigen::Index b = pinned[3] / 3;
-  for (int c = 0; c < 3; ++c) {
-    bad.row(c) = fields.row(3 * a + c);
-    bad.row(3 + c) = fields.row(3 * b + c);
-  }
-  EXPECT_GT(condition_number(bad), 1e12);
-  RecordProperty("overconstrained_condition_number", scientific(condition_number(bad)));
+  const double bad =
+      pinned_rows_condition(p, {3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2});
+  EXPECT_GT(bad, 1e12);
+  RecordProperty("overconstrained_condition_number", scientific(bad));
 }
 
 TEST(RigidMotionPinning, FirstCandidateIsAnchorAndChoiceIsWellSpread) {
@@ -283,15 +286,8 @@ TEST(RigidMotionPinning, PinsChosenOnTheReferenceLoseTheirLeverArmWhenTheRimWrap
   const double wrapped_reference = pinned_rigid_motion_condition(wrapped(1.0), reference_pins);
   // The library's condition number against the test's own (rotations about the centroid,
   // unscaled; the disc's RMS radius is 0.7, so the two differ but agree on degeneracy).
-  const auto unscaled_condition = [](const Eigen::MatrixX3d& p,
-                                     const std::vector<Eigen::Index>& pins) {
-    const Eigen::MatrixXd fields = rigid_fields(p);
-    Eigen::MatrixXd restricted(6, 6);
-    for (int r = 0; r < 6; ++r) restricted.row(r) = fields.row(pins[static_cast<std::size_t>(r)]);
-    return condition_number(restricted);
-  };
-  EXPECT_LT(unscaled_condition(wrapped(0.0), reference_pins), 1e2);
-  EXPECT_GT(unscaled_condition(wrapped(1.0), reference_pins), 1e6);
+  EXPECT_LT(pinned_rows_condition(wrapped(0.0), reference_pins), 1e2);
+  EXPECT_GT(pinned_rows_condition(wrapped(1.0), reference_pins), 1e6);
   EXPECT_LT(flat_reference, 1e2);
   EXPECT_GT(wrapped_reference, 1e6);
 
