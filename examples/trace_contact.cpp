@@ -34,6 +34,8 @@
 #include <vector>
 
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/hard_contact_options.hpp"
+#include "examples/support/json_number.hpp"
 #include "examples/support/saved_point.hpp"
 #include "examples/support/scene_command_line.hpp"
 #include "libshell/contact/contact_penalty.hpp"
@@ -103,12 +105,7 @@ struct BranchOutput {
   int index = 0;
 };
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream o;
-  o << std::setprecision(12) << v;
-  return o.str();
-}
+using examples::json_number;
 
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -326,21 +323,10 @@ int run(int argc, char** argv) {
   branches.skewed_start = skew_from == "top" ? SkewedStart::Top : SkewedStart::BranchPoint;
   branches.skew_search_at = skew_at;
   branches.trace_skewed = skewed;
-  // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h, on
-  // vertex-triangle and edge-edge pairs (the penalty sees vertex-triangle pairs only, so the
-  // check also measures what the edges crossing between proxy vertices change).
-  ContactSolveOptions ipopt;
-  ipopt.edge_edge_pairs = true;
-  ipopt.contact_distance = options.contact_distance;
-  ipopt.exclusion_radius = options.exclusion_radius;
-  ipopt.candidate_margin = options.candidate_margin;
-  ipopt.violation_tolerance = 1e-2 * h;
-  ipopt.minimizer.length_scale = h;
-  ipopt.minimizer.force_scale = model.natural_force_scale();
-  ipopt.minimizer.tolerance = 1e-8;
-  ipopt.minimizer.constraint_violation_tolerance = 1e-6 * h;
-  ipopt.minimizer.complementarity_tolerance = 1e-8 * model.natural_force_scale() * h;
-  ipopt.newton = newton_options;
+  // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h.
+  const ContactSolveOptions ipopt = examples::hard_contact_solve_options(
+      model, h, options.contact_distance, options.exclusion_radius, options.candidate_margin,
+      newton_options);
   if (ipopt_check) branches.verify_with_ipopt = ipopt;
   branches.relaxation = newton_options;
   branches.relaxation.max_iterations = 400;
