@@ -51,6 +51,8 @@ const char* kUsage = R"(usage: crit_hard_contact RUN [options]
                      at which both branches are stable, i.e. phi_e^crit)
   --neighbours K     samples re-solved on each side beyond the two that bracket the crossing,
                      per branch (default 1: they give the interpolation error estimate)
+  --segments N       the run's contact proxy: segments per element edge (default 1, as
+                     trace_contact; give the run's --segments)
   --stiffness-factor F  the run's penalty stiffness factor (default 10, as trace_contact):
                      its forces warm-start Ipopt's multipliers; 0 = cold start
   --max-extensions M if the re-solved energies do not cross within those samples, re-solve up
@@ -182,6 +184,7 @@ int run(int argc, char** argv) {
   const int max_extensions = cl.integer("--max-extensions", 6);
   const double tolerance = cl.number("--tolerance", 1e-6);
   const double stiffness_factor = cl.number("--stiffness-factor", 10.0);
+  const int segments = cl.integer("--segments", 1);
   const double max_mismatch = cl.number("--max-mismatch", 0.05);
   const std::string reuse_dir = cl.text("--reuse", "");
   const std::string out_dir = cl.text("--out", run_dir);
@@ -190,6 +193,7 @@ int run(int argc, char** argv) {
   if (max_extensions < 0) throw std::invalid_argument("--max-extensions must be >= 0");
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
   if (!(stiffness_factor >= 0.0)) throw std::invalid_argument("--stiffness-factor must be >= 0");
+  if (segments < 1) throw std::invalid_argument("--segments must be >= 1");
   if (!(max_mismatch > 0.0)) throw std::invalid_argument("--max-mismatch must be > 0");
 
   const Scene scene = read_scene(run_dir + "/scene.json");
@@ -198,7 +202,7 @@ int run(int argc, char** argv) {
   const double R = scene.geometry.radius;
   const double h = thickness_at_radius(scene.thickness, 0.0, R);
   const double Y = scene.material.youngs_modulus;
-  const ContactProxy proxy = make_contact_proxy(model, 1);
+  const ContactProxy proxy = make_contact_proxy(model, segments);
 
   // The penalty crossing to re-locate.
   const BranchSamples symmetric = read_branch(run_dir, "symmetric");
@@ -426,6 +430,7 @@ int run(int argc, char** argv) {
        << ",\n  \"hard_contact_energy\": " << json_number(hard ? hard->energy : NAN)
        << ",\n  \"hard_contact_slope_difference\": "
        << json_number(hard ? hard->slope_difference : NAN)
+       << ",\n  \"proxy_segments\": " << segments
        << ",\n  \"warm_start_stiffness\": " << json_number(options.penalty_stiffness)
        << ",\n  \"left_branch_symmetric_rows\": " << rows_json(left_a)
        << ",\n  \"left_branch_skewed_rows\": " << rows_json(left_b)
