@@ -120,31 +120,27 @@ using Resolved = std::map<std::size_t, HardContactSample>;
 std::vector<BranchEnergySample> on_branch_energies(const Resolved& r, std::size_t anchor,
                                                    double max_mismatch,
                                                    std::vector<std::size_t>& left) {
-  std::vector<const HardContactSample*> ordered;
+  std::vector<HardContactSample> ordered;
   std::vector<std::size_t> rows;
   for (const auto& [row, s] : r)
     if (s.converged) {
-      ordered.push_back(&s);
+      ordered.push_back(s);
       rows.push_back(row);
     }
   if (ordered.empty()) return {};
   // Start from the converged sample nearest the anchor rows.
   std::size_t start = 0;
+  const auto distance = [&](std::size_t i) { return std::abs(double(rows[i]) - (anchor + 0.5)); };
   for (std::size_t i = 0; i < rows.size(); ++i)
-    if (std::abs(double(rows[i]) - (anchor + 0.5)) < std::abs(double(rows[start]) - (anchor + 0.5)))
-      start = i;
-  std::size_t lo = start, hi = start;
-  while (hi + 1 < ordered.size() &&
-         branch_continuity_mismatch(*ordered[hi], *ordered[hi + 1]) <= max_mismatch)
-    ++hi;
-  while (lo > 0 && branch_continuity_mismatch(*ordered[lo - 1], *ordered[lo]) <= max_mismatch) --lo;
+    if (distance(i) < distance(start)) start = i;
+  const auto [lo, hi] = continuous_stretch(ordered, start, max_mismatch);
   std::vector<BranchEnergySample> out;
   for (std::size_t i = 0; i < ordered.size(); ++i) {
     if (i < lo || i > hi) {
       left.push_back(rows[i]);
       continue;
     }
-    out.push_back({ordered[i]->parameter, ordered[i]->energy, ordered[i]->energy_slope});
+    out.push_back({ordered[i].parameter, ordered[i].energy, ordered[i].energy_slope});
   }
   return out;
 }

@@ -144,6 +144,24 @@ double branch_continuity_mismatch(const HardContactSample& a, const HardContactS
   return scale > 0.0 ? miss / scale : (miss > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
 }
 
+std::pair<std::size_t, std::size_t> continuous_stretch(
+    const std::vector<HardContactSample>& samples, std::size_t anchor, double max_mismatch) {
+  if (anchor >= samples.size())
+    throw std::invalid_argument("continuous_stretch: anchor " + std::to_string(anchor) +
+                                " is out of range (" + std::to_string(samples.size()) +
+                                " samples)");
+  if (!(max_mismatch > 0.0))
+    throw std::invalid_argument("continuous_stretch: max_mismatch must be > 0");
+  std::size_t first = anchor, last = anchor;
+  while (last + 1 < samples.size() &&
+         branch_continuity_mismatch(samples[last], samples[last + 1]) <= max_mismatch)
+    ++last;
+  while (first > 0 &&
+         branch_continuity_mismatch(samples[first - 1], samples[first]) <= max_mismatch)
+    --first;
+  return {first, last};
+}
+
 HardContactSample resolve_with_hard_contact(ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const std::vector<Eigen::Index>& pins,

@@ -30,6 +30,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libshell/assembly/shell_model.hpp"
@@ -122,6 +123,15 @@ HardContactSample resolve_with_hard_contact(ShellModel& model, const ContactProx
 /// state that slid to the symmetric one where its constrained branch no longer exists) shows as
 /// O(1). Throws std::invalid_argument if the two parameters are equal or a value is not finite.
 double branch_continuity_mismatch(const HardContactSample& a, const HardContactSample& b);
+
+/// The stretch of `samples` (converged re-solves following one branch in order, e.g. by
+/// increasing phi_e) that lies on one smooth branch with samples[anchor]: the indices
+/// [first, last] around anchor such that every consecutive pair inside has
+/// branch_continuity_mismatch <= max_mismatch, extended outwards from anchor until the first
+/// pair that does not. Samples beyond it have left the anchor's branch (or the branch ended
+/// there). Throws std::invalid_argument if anchor is out of range or max_mismatch <= 0.
+std::pair<std::size_t, std::size_t> continuous_stretch(
+    const std::vector<HardContactSample>& samples, std::size_t anchor, double max_mismatch);
 
 /// Progress callback: the branch ('a' or 'b'), the sample's index in its list and its result.
 using HardContactSampleCallback =

@@ -142,6 +142,33 @@ TEST(HardContactCrossing, AFailedSolveIsNamedAndLeftOutOfTheCrossing) {
   EXPECT_NE(r.message.find("fewer than two converged samples"), std::string::npos) << r.message;
 }
 
+// Samples of E = cos(phi) with their exact slopes lie on one smooth branch; a sample replaced by
+// one of another branch (E shifted by 1e-2, a jump of the size seen when a skewed state slides
+// onto the symmetric one) ends the stretch on its side, whichever side of the anchor it is.
+TEST(HardContactCrossing, ContinuousStretchEndsWhereASampleLeftTheBranch) {
+  std::vector<HardContactSample> samples;
+  for (int i = 0; i < 8; ++i) {
+    HardContactSample s;
+    s.parameter = 5.9 + 0.05 * i;
+    s.energy = std::cos(s.parameter);
+    s.energy_slope = -std::sin(s.parameter);
+    s.converged = true;
+    samples.push_back(s);
+  }
+  // On the branch the trapezoidal miss is dphi^2 |E'''| / 12 / |E'| ~ 2e-4 here.
+  for (std::size_t i = 0; i + 1 < samples.size(); ++i)
+    EXPECT_LT(branch_continuity_mismatch(samples[i], samples[i + 1]), 1e-3);
+  EXPECT_EQ(continuous_stretch(samples, 3, 0.05), std::make_pair(std::size_t{0}, std::size_t{7}));
+  std::vector<HardContactSample> jumped = samples;
+  jumped[6].energy += 1e-2;
+  jumped[1].energy -= 1e-2;
+  EXPECT_GT(branch_continuity_mismatch(jumped[5], jumped[6]), 0.05);
+  EXPECT_EQ(continuous_stretch(jumped, 3, 0.05), std::make_pair(std::size_t{2}, std::size_t{5}));
+  EXPECT_EQ(continuous_stretch(jumped, 6, 0.05), std::make_pair(std::size_t{6}, std::size_t{6}));
+  EXPECT_THROW(continuous_stretch(jumped, 8, 0.05), std::invalid_argument);
+  EXPECT_THROW(continuous_stretch(jumped, 3, 0.0), std::invalid_argument);
+}
+
 TEST(HardContactCrossing, BadInputIsRejectedByName) {
   GrownDisc& d = disc();
   const Eigen::VectorXd& X = d.model.reference_positions();
