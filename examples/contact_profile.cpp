@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "examples/support/command_line.hpp"
+#include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
 #include "libshell/analysis/core_radius.hpp"
@@ -65,15 +65,11 @@ struct Row {
 };
 
 int run(int argc, char** argv) {
-  if (argc < 2 || argv[1][0] == '-') {
-    const bool help = argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h");
-    std::fputs(kUsage, help ? stdout : stderr);
-    return help ? 0 : 2;
-  }
-  const std::string dir = argv[1];
-  std::vector<char*> rest(argv + 2, argv + argc);
-  rest.insert(rest.begin(), argv[0]);
-  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  int exit_code = 0;
+  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
+  if (!command_line) return exit_code;
+  const std::string dir = command_line->directory;
+  examples::CommandLine& cl = command_line->options;
   const std::vector<double> bands = parse_list(cl.text("--bands", "0,0.2,0.5,0.9"));
   const double distance_option = cl.number("--distance", -1.0);
   const double from = cl.number("--from", 0.0);

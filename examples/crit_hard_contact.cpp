@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "examples/support/branch_table.hpp"
-#include "examples/support/command_line.hpp"
+#include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/hard_contact_options.hpp"
 #include "examples/support/json_number.hpp"
@@ -163,18 +163,26 @@ std::optional<std::size_t> next_row(const BranchSamples& b, const Resolved& r, b
 
 using examples::json_number;
 
+/// The crossing of `crossings` nearest `parameter`, skipping touchings (infinite error
+/// estimate) if `crossings_only`; nullptr if there is none.
+const EnergyCrossing* nearest_crossing(const std::vector<EnergyCrossing>& crossings,
+                                       double parameter, bool crossings_only) {
+  const EnergyCrossing* best = nullptr;
+  for (const EnergyCrossing& c : crossings)
+    if ((!crossings_only || std::isfinite(c.error_estimate)) &&
+        (best == nullptr ||
+         std::abs(c.parameter - parameter) < std::abs(best->parameter - parameter)))
+      best = &c;
+  return best;
+}
+
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  if (argc < 2 || argv[1][0] == '-') {
-    const bool help =
-        argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h");
-    std::fputs(kUsage, help ? stdout : stderr);
-    return help ? 0 : 2;
-  }
-  const std::string run_dir = argv[1];
-  std::vector<char*> rest(argv + 2, argv + argc);
-  rest.insert(rest.begin(), argv[0]);
-  examples::CommandLine cl(static_cast<int>(rest.size()), rest.data());
+  int exit_code = 0;
+  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
+  if (!command_line) return exit_code;
+  const std::string run_dir = command_line->directory;
+  examples::CommandLine& cl = command_line->options;
   const double near = cl.number("--near", std::numeric_limits<double>::quiet_NaN());
   const int neighbours = cl.integer("--neighbours", 1);
   const int max_extensions = cl.integer("--max-extensions", 6);
@@ -205,17 +213,15 @@ int run(int argc, char** argv) {
   const BranchSamples skewed = read_branch(run_dir, "skewed");
   const std::vector<EnergyCrossing> crossings = energy_crossings(symmetric.penalty, skewed.penalty);
   const EnergyCrossing* chosen = nullptr;
-  for (const EnergyCrossing& c : crossings) {
-    if (!std::isfinite(c.error_estimate)) continue;  // a touching, not a crossing
-    if (std::isnan(near)) {
-      if (stable_segment(symmetric, c.segment_a) && stable_segment(skewed, c.segment_b)) {
+  if (std::isnan(near)) {
+    for (const EnergyCrossing& c : crossings)
+      if (std::isfinite(c.error_estimate) && stable_segment(symmetric, c.segment_a) &&
+          stable_segment(skewed, c.segment_b)) {
         chosen = &c;
         break;
       }
-    } else if (chosen == nullptr ||
-               std::abs(c.parameter - near) < std::abs(chosen->parameter - near)) {
-      chosen = &c;
-    }
+  } else {
+    chosen = nearest_crossing(crossings, near, true);
   }
   if (chosen == nullptr)
     throw std::runtime_error(std::isnan(near)
@@ -343,11 +349,7 @@ int run(int argc, char** argv) {
       break;
     }
     hard_crossings = energy_crossings(ea, eb);
-    for (const EnergyCrossing& c : hard_crossings)
-      if (std::isfinite(c.error_estimate) &&
-          (hard == nullptr || std::abs(c.parameter - chosen->parameter) <
-                                  std::abs(hard->parameter - chosen->parameter)))
-        hard = &c;
+    hard = nearest_crossing(hard_crossings, chosen->parameter, true);
     if (hard != nullptr) break;
     if (extension == max_extensions) {
       note = "the re-solved energies do not cross within " + std::to_string(max_extensions) +
@@ -398,13 +400,9 @@ int run(int argc, char** argv) {
     for (const auto& [row, sample] : r) out.push_back(s.penalty[row]);
     return out;
   };
-  const EnergyCrossing* local = nullptr;
   const std::vector<EnergyCrossing> penalty_local =
       energy_crossings(penalty_of(symmetric, resolved_a), penalty_of(skewed, resolved_b));
-  for (const EnergyCrossing& c : penalty_local)
-    if (local == nullptr ||
-        std::abs(c.parameter - chosen->parameter) < std::abs(local->parameter - chosen->parameter))
-      local = &c;
+  const EnergyCrossing* local = nearest_crossing(penalty_local, chosen->parameter, false);
 
   const auto rows_json = [](const std::vector<std::size_t>& rows) {
     std::string out = "[";

@@ -11,6 +11,7 @@
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/penalized_growth_family.hpp"
+#include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
 namespace growshell {
@@ -60,17 +61,8 @@ ContactBranchSample describe(ShellModel& model, ContactPenalty* penalty, const B
   out.bending_energy = e.bending;
   out.current_area = e.current_area;
   out.normalized_bending = e.normalized_bending();
-  // dE/dphi at fixed state by central differences: the truncation error is delta^2 E''' / 6
-  // ~ 1e-9 E and the round-off eps E / delta ~ 1e-12 E for delta = 1e-4 (P does not depend on
-  // phi_e).
-  const double delta = 1e-4;
-  model.set_excess_angle(sample.parameter + delta);
-  const ShellEnergyBreakdown up = model.energy_breakdown(sample.x);
-  model.set_excess_angle(sample.parameter - delta);
-  const ShellEnergyBreakdown down = model.energy_breakdown(sample.x);
-  model.set_excess_angle(sample.parameter);
-  out.energy_slope =
-      ((up.stretching + up.bending) - (down.stretching + down.bending)) / (2.0 * delta);
+  // dE/dphi at fixed state (P does not depend on phi_e).
+  out.energy_slope = elastic_energy_slope(model, sample.x, sample.parameter);
   out.min_distance = std::numeric_limits<double>::infinity();
   out.forces = Eigen::VectorXd::Zero(0);
   if (!pairs.empty()) {

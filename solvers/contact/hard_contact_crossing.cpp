@@ -10,6 +10,7 @@
 
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "solvers/contact/contact_zones.hpp"
+#include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
 namespace growshell {
@@ -36,7 +37,7 @@ void validate(const HardContactCrossingOptions& o, const std::vector<Eigen::Inde
     throw std::invalid_argument("crossing_tolerance must be > 0 and finite");
   if (pins.size() != 6)
     throw std::invalid_argument(
-        "hard_contact_energy_crossing needs the six rigid-motion pins, got " +
+        "re-solving under hard contact needs the six rigid-motion pins, got " +
         std::to_string(pins.size()) + " dofs");
 }
 
@@ -100,14 +101,7 @@ HardContactSample resolve(ShellModel& model, const ContactProxy& proxy, const Br
   out.min_distance = r.min_distance;
   out.max_state_difference = (out.x - s.x).cwiseAbs().maxCoeff();
   out.energy = elastic_energy(model, out.x);
-  // partial E / partial phi at fixed x by central differences (the truncation error is
-  // delta^2 E''' / 6, about 1e-9 E for delta = 1e-4).
-  model.set_excess_angle(s.parameter + o.slope_step);
-  const double up = elastic_energy(model, out.x);
-  model.set_excess_angle(s.parameter - o.slope_step);
-  const double down = elastic_energy(model, out.x);
-  model.set_excess_angle(s.parameter);
-  out.energy_slope = (up - down) / (2.0 * o.slope_step);
+  out.energy_slope = elastic_energy_slope(model, out.x, s.parameter, o.slope_step);
 
   out.gamma = std::numeric_limits<double>::quiet_NaN();
   out.constrained_pairs = static_cast<int>(r.forces.size());

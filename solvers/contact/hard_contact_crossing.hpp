@@ -58,7 +58,8 @@ struct HardContactCrossingOptions {
   double zone_link_distance = 0.1;
   double zone_active_fraction = 1e-3;
   double zone_max_normal_angle = 0.5235987755982988;  // pi / 6
-  /// Half-width of the central difference for partial E / partial phi (radians, > 0).
+  /// Half-width of the central difference for partial E / partial phi (radians, > 0;
+  /// elastic_energy_slope).
   double slope_step = 1e-4;
   /// Consecutive converged re-solves of one branch whose branch_continuity_mismatch exceeds this
   /// (> 0) are reported in HardContactCrossing::message: one of them has probably relaxed onto
