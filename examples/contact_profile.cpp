@@ -36,6 +36,10 @@ const char* kUsage = R"(usage: contact_profile RUN_DIR [options]
   --bands B1,B2,...   reference radii (m) below which samples are ignored, one gap per band
                       (default 0,0.2,0.5,0.9)
   --distance D        contact distance (default: the scene's, i.e. the thickness h)
+  --exclusion-radius R  pairs closer than R (m) in the reference are neighbours (default: the
+                      scene's physics.contact_exclusion_radius, auto = pi h / 2). At a cone's
+                      apex the closest pair straddles the apex at reference distance R, so the
+                      band r >= 0 measures where that cut-off lies (docs/contact.md)
   --from P            skip states with phi_e < P (default 0)
   --samples N         limit-surface samples per element edge (default 2)
 Writes RUN_DIR/contact_profile.csv: phi_e, then per band gap_<b> and radius_<b> (mean
@@ -74,9 +78,14 @@ int run(int argc, char** argv) {
   const double distance_option = cl.number("--distance", -1.0);
   const double from = cl.number("--from", 0.0);
   const int samples = cl.integer("--samples", 2);
+  const std::string exclusion_text = cl.text("--exclusion-radius", "");
   cl.reject_unknown();
 
-  const Scene scene = read_scene(dir + "/scene.json");
+  Scene scene = read_scene(dir + "/scene.json");
+  if (!exclusion_text.empty())
+    apply_override(scene, "physics.contact_exclusion_radius", exclusion_text);
+  validate_scene(scene);
+  const double exclusion_radius = resolved_exclusion_radius(scene);
   ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   const double contact_distance =
@@ -99,7 +108,7 @@ int run(int argc, char** argv) {
     row.phi = s.parameter;
     for (const double b : bands) {
       SelfDistanceOptions o;
-      o.exclusion_radius = 0.5 * std::acos(-1.0) * h;
+      o.exclusion_radius = exclusion_radius;
       o.samples_per_edge = samples;
       o.core_radius = b;
       o.core_center = model.settings().growth.center;
@@ -109,7 +118,7 @@ int run(int argc, char** argv) {
                                   (d.reference_b - o.core_center).head<2>().norm()));
     }
     SelfIntersectionOptions so;
-    so.exclusion_radius = 0.5 * std::acos(-1.0) * h;
+    so.exclusion_radius = exclusion_radius;
     so.samples_per_edge = samples;
     so.core_radius = bands.front();
     so.core_center = model.settings().growth.center;
@@ -125,7 +134,8 @@ int run(int argc, char** argv) {
     csv.flush();
     rows.push_back(std::move(row));
   }
-  std::printf("# %s: %zu states, contact distance %g\n", dir.c_str(), rows.size(), contact_distance);
+  std::printf("# %s: %zu states, contact distance %g, exclusion radius %g\n", dir.c_str(),
+              rows.size(), contact_distance, exclusion_radius);
   for (std::size_t k = 0; k < bands.size(); ++k) {
     bool found = false;
     for (std::size_t i = 1; i < rows.size() && !found; ++i) {

@@ -241,7 +241,7 @@ int run(int argc, char** argv) {
   HardContactCrossingOptions options;
   const double contact_distance = scene.physics.contact_distance.value_or(h);
   options.solve = examples::hard_contact_solve_options(model, h, contact_distance,
-                                                       0.5 * std::numbers::pi * h, h, newton);
+                                                       resolved_exclusion_radius(scene), h, newton);
   options.penalty_stiffness =
       stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
   options.zone_link_distance = 0.1 * R;

@@ -139,7 +139,7 @@ int run(int argc, char** argv) {
     EconeBranchOptions options;
     ContactBranchOptions& c = options.contact;
     c.contact_distance = scene.physics.contact_distance.value_or(h);
-    c.exclusion_radius = 0.5 * std::numbers::pi * h;
+    c.exclusion_radius = resolved_exclusion_radius(scene);
     c.candidate_margin = h;
     c.stiffness = stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
     c.violation_tolerance = 0.25 * h;

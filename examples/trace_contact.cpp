@@ -75,6 +75,10 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           DIR/states/point_NNNNN.txt of the same scene)
   --stiffness-factor F    penalty stiffness k = F Y l^2 / h (l: proxy spacing; default 10)
   --segments N            contact proxy: segments per element edge (default 1)
+  --exclusion-radius R    pairs closer than R (m) in the reference are neighbours, not
+                          contact (physics.contact_exclusion_radius; default auto = pi h / 2;
+                          it decides whether the fold at the apex counts as contact, see
+                          docs/contact.md)
   --margin M              pairs within h + M enter a segment's penalty (default h)
   --max-step S            largest arclength step (default 0.05)
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
@@ -118,6 +122,9 @@ int run(int argc, char** argv) {
   if (!h_text.empty()) apply_override(scene, "thickness", h_text);
   const std::string rings = cl.text("--rings", "");
   if (!rings.empty()) apply_override(scene, "mesh.rings", rings);
+  const std::string exclusion_text = cl.text("--exclusion-radius", "");
+  if (!exclusion_text.empty())
+    apply_override(scene, "physics.contact_exclusion_radius", exclusion_text);
   const double phi_max = cl.number("--phi-max", 10.0);
   const double skew_at = cl.number("--skew-at", 6.6);
   const double phi_wind = cl.number("--phi-wind", 13.0);
@@ -225,7 +232,7 @@ int run(int argc, char** argv) {
 
   ContactBranchOptions options;
   options.contact_distance = scene.physics.contact_distance.value_or(h);
-  options.exclusion_radius = 0.5 * std::numbers::pi * h;
+  options.exclusion_radius = resolved_exclusion_radius(scene);
   options.candidate_margin = margin_option > 0.0 ? margin_option : h;
   options.stiffness = stiffness;
   options.violation_tolerance = 0.25 * h;

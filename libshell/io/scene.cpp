@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <stdexcept>
 #include <string_view>
 #include <type_traits>
@@ -212,6 +213,9 @@ const Field kFields[] = {
   {"physics.contact_distance",
    [](Scene& s, const Json& v, const std::string& k) { s.physics.contact_distance = read_number_or_auto(v, k); },
    [](const Scene& s) { return write_number_or_auto(s.physics.contact_distance); }},
+  {"physics.contact_exclusion_radius",
+   [](Scene& s, const Json& v, const std::string& k) { s.physics.contact_exclusion_radius = read_number_or_auto(v, k); },
+   [](const Scene& s) { return write_number_or_auto(s.physics.contact_exclusion_radius); }},
   {"continuation.phi_start",
    [](Scene& s, const Json& v, const std::string& k) { s.continuation.phi_start = read_number(v, k); },
    [](const Scene& s) { return Json(s.continuation.phi_start); }},
@@ -359,6 +363,10 @@ void validate_scene(const Scene& scene) {
     fail("mesh.quadrature_degree = " + std::to_string(m.quadrature_degree) + " must be in {1, ..., 6}");
 
   if (scene.physics.contact_distance) require_positive(*scene.physics.contact_distance, "physics.contact_distance");
+  if (scene.physics.contact_exclusion_radius) {
+    require_positive(*scene.physics.contact_exclusion_radius, "physics.contact_exclusion_radius");
+    resolved_exclusion_radius(scene);
+  }
 
   const SceneContinuation& c = scene.continuation;
   require_finite(c.phi_min, "continuation.phi_min");
@@ -457,6 +465,18 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 double resolved_min_spacing(const Scene& scene) {
   if (scene.mesh.min_spacing) return *scene.mesh.min_spacing;
   return 0.5 * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+}
+
+double resolved_exclusion_radius(const Scene& scene) {
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const double distance = scene.physics.contact_distance.value_or(h);
+  if (!scene.physics.contact_exclusion_radius) return 0.5 * std::numbers::pi * h;
+  const double radius = *scene.physics.contact_exclusion_radius;
+  if (!(radius >= distance))
+    fail("physics.contact_exclusion_radius = " + format(radius) +
+         " must be >= the contact distance " + format(distance) +
+         " (physics.contact_distance, or the thickness at the centre if auto)");
+  return radius;
 }
 
 ThicknessField scene_thickness_field(const Scene& scene) {

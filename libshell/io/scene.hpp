@@ -93,6 +93,12 @@ struct ScenePhysics {
   /// means the thickness: h for a constant profile, (h_a + h_b) / 2 of the two touching
   /// points for a varying one (resolved by the contact layer).
   std::optional<double> contact_distance;
+  /// Pairs of points closer than this (m) to each other in the reference (geodesic distance on
+  /// the reference sheet) are neighbours, never contact, >= the contact distance. Unset
+  /// ("auto") means pi h / 2 with h the thickness at the centre (resolved by
+  /// resolved_exclusion_radius). It decides whether the sheet's tight fold at the cone's apex
+  /// counts as contact: see docs/contact.md, "Exclusion radius".
+  std::optional<double> contact_exclusion_radius;
 };
 
 /// Direction in which a branch is followed from continuation.phi_start.
@@ -184,6 +190,12 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 /// The mesh's smallest spacing (m): mesh.min_spacing if set, else half the thickness at the
 /// centre (r = 0).
 double resolved_min_spacing(const Scene& scene);
+
+/// The contact exclusion radius (m): physics.contact_exclusion_radius if set, else pi h / 2
+/// with h the thickness at the centre (r = 0). Throws std::invalid_argument naming the key if
+/// it is below the contact distance (physics.contact_distance, or that thickness if unset):
+/// neighbours on a flat sheet would then count as touching.
+double resolved_exclusion_radius(const Scene& scene);
 
 /// Thickness field over reference positions X (m): thickness_at_radius at r = |(X_x, X_y)|.
 ThicknessField scene_thickness_field(const Scene& scene);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -75,6 +76,8 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.mesh.quadrature_degree, 2);
   EXPECT_FALSE(s.physics.contact);
   EXPECT_FALSE(s.physics.contact_distance.has_value());
+  EXPECT_FALSE(s.physics.contact_exclusion_radius.has_value());
+  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.02);
   EXPECT_EQ(s.continuation.phi_start, 0.0);
   EXPECT_EQ(s.continuation.phi_max, 3.73);
   EXPECT_EQ(s.continuation.max_step, 0.1);
@@ -117,6 +120,7 @@ Scene everything_changed() {
   s.mesh.quadrature_degree = 5;
   s.physics.contact = true;
   s.physics.contact_distance = 0.021;
+  s.physics.contact_exclusion_radius = 0.125;
   s.continuation.phi_start = 6.5;
   s.continuation.phi_min = 1.0;
   s.continuation.phi_max = 12.566370614359172;
@@ -130,6 +134,26 @@ Scene everything_changed() {
   s.output.snapshot_every = 4;
   s.output.write_vtk = false;
   return s;
+}
+
+TEST(Scene, ExclusionRadiusFollowsAThicknessOverrideAndMustReachTheContactDistance) {
+  Scene s = default_scene();
+  apply_override(s, "thickness", "0.04");
+  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.04);
+  apply_override(s, "physics.contact_exclusion_radius", "0.16");
+  EXPECT_EQ(resolved_exclusion_radius(s), 0.16);
+  // Below the contact distance neighbours on a flat sheet would be taken for contact.
+  s.physics.contact_exclusion_radius = 0.03;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "physics.contact_exclusion_radius = 0.03 must be >= the contact distance 0.04 "
+            "(physics.contact_distance, or the thickness at the centre if auto)");
+  s.physics.contact_distance = 0.025;
+  EXPECT_EQ(resolved_exclusion_radius(s), 0.03);
+  s.physics.contact_exclusion_radius = -1.0;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "physics.contact_exclusion_radius = -1 must be finite and > 0");
+  apply_override(s, "physics.contact_exclusion_radius", "auto");
+  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.04);
 }
 
 TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
@@ -153,6 +177,7 @@ TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
   EXPECT_EQ(b.mesh.quadrature_degree, a.mesh.quadrature_degree);
   EXPECT_EQ(b.physics.contact, a.physics.contact);
   EXPECT_EQ(b.physics.contact_distance, a.physics.contact_distance);
+  EXPECT_EQ(b.physics.contact_exclusion_radius, a.physics.contact_exclusion_radius);
   EXPECT_EQ(b.continuation.phi_start, a.continuation.phi_start);
   EXPECT_EQ(b.continuation.phi_min, a.continuation.phi_min);
   EXPECT_EQ(b.continuation.phi_max, a.continuation.phi_max);
