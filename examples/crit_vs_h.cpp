@@ -36,6 +36,8 @@ using Clock = std::chrono::steady_clock;
 
 const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
   SCENE.json          scene (default: the paper's disc); its thickness is replaced by each h
+                      (physics.contact_exclusion_radius "auto" follows it as pi h / 2; a number
+                      in the scene is used as it is for every h)
   --h LIST            thicknesses, comma separated (default 0.04,0.03,0.02,0.015)
   --rings N           mesh rings (default: the scene's)
   --phi-start P       contact-free growth from flat up to P (default 5.0)
