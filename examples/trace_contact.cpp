@@ -67,7 +67,8 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           state at 10 the skewed cone is a winding away, see docs/contact.md)
   --phi-wind P            follow the skewed branch forward up to P, and beyond its end grow
                           on by minimisation (DIR/branch_grown.csv; default 13; 0 = skip)
-  --phi-contact-start P   contact-free cone traced from flat up to P (default 5.2: at h = 0.02
+  --phi-contact-start P   contact-free cone traced from flat up to P; its samples head
+                          branch_symmetric.csv and count for the crossing (default 5.2: at h = 0.02
                           the trace from there passes the stability loss on the symmetric
                           branch; from 5.5 it turns onto the bifurcating one, see
                           docs/validation.md; an event symmetry_lost reports such a switch)
@@ -184,6 +185,11 @@ int run(int argc, char** argv) {
   // 1. The contact-free cone up to the start of the contact trace.
   Eigen::VectorXd x;
   double phi = 0.0;
+  // The contact-free cone's samples (from flat only): written at the head of the symmetric
+  // branch and joined to it for the energy crossing, which can lie below the contact trace's
+  // start (docs/contact.md, "Exclusion radius").
+  std::vector<BranchSample> cone_samples;
+  std::vector<SpecialPoint> cone_special_points;
   NewtonOptions newton_options;
   newton_options.gradient_tolerance = tolerance * model.natural_force_scale();
   // Relaxations (skewed search, growth beyond the skewed branch): the decrement test stops
@@ -215,14 +221,25 @@ int run(int argc, char** argv) {
     const ConeBranchEntry entry =
         enter_cone_branch(free_family, model, entry_options, pinned, cone_options);
     if (!entry.found) throw std::runtime_error("the flat disc did not buckle: " + entry.message);
-    const BranchTrace cone =
-        trace_branch_along(free_family, entry.start, entry.branch_point.parameter, entry.mode, 0.0,
-                           pinned, cone_options);
+    const BranchTrace cone = trace_branch_along(
+        free_family, entry.start, entry.branch_point.parameter, entry.mode, 0.0, pinned,
+        cone_options, [&](const BranchSample& s) { cone_samples.push_back(s); },
+        [&](const SpecialPoint& p) { cone_special_points.push_back(p); });
     if (!cone.reached_bound)
       throw std::runtime_error("the contact-free cone ended at phi_e = " +
                                std::to_string(cone.last.parameter) + ": " + cone.message);
     x = cone.last.x;
     phi = cone.last.parameter;
+    // The cone was traced without contact: it must not have reached it.
+    const double distance = scene.physics.contact_distance.value_or(h);
+    const ContactCandidates near =
+        near_contact_pairs(proxy, x, distance, resolved_exclusion_radius(scene));
+    if (!near.empty())
+      throw std::invalid_argument("--phi-contact-start " + std::to_string(phi_contact_start) +
+                                  " lies past first contact: the contact-free cone has a pair " +
+                                  std::to_string(smallest_pair_distance(proxy, near, x)) +
+                                  " m apart there (contact at " + std::to_string(distance) +
+                                  " m); lower it");
     std::printf(
         "# buckled at phi_e = %.7f; cone traced without contact to phi_e = %.4f in %d "
         "steps (%.1f s)\n",
@@ -368,6 +385,21 @@ int run(int argc, char** argv) {
       add_event("stability_loss", sp.parameter, extra.str());
     }
   };
+  // The contact-free cone (from flat): its samples head the symmetric branch, and its special
+  // points are the symmetric branch's (the subcritical stability loss can lie below the start
+  // of the trace with contact, e.g. with an exclusion radius that covers the apex core).
+  for (const BranchSample& c : cone_samples) {
+    if (!(c.parameter < phi)) continue;  // the last one starts the trace with contact
+    const ContactBranchSample described =
+        describe_contact_sample(model, proxy, c, ContactCandidates{}, options);
+    branches.symmetric_before.push_back({c.parameter,
+                                         described.stretching_energy + described.bending_energy,
+                                         described.energy_slope});
+    write_sample(symmetric, described);
+  }
+  cone_samples.clear();
+  for (const SpecialPoint& p : cone_special_points)
+    if (p.parameter < phi) callbacks.on_special(EconeBranch::Symmetric, p);
   callbacks.on_event = [&](const LocatedEvent& e) {
     add_event(e.kind, e.parameter, ", \"bracket\": " + json_number(e.bracket_width));
   };
@@ -391,7 +423,7 @@ int run(int argc, char** argv) {
     top_skewed = x;
     top_skewed_phi = phi;
   }
-  if (grow_from.empty() && !result.stability_loss)
+  if (grow_from.empty() && !result.stability_loss && !stability_lost)
     std::printf("# the symmetric branch stays stable up to phi_e = %.4f\n",
                 result.symmetric.last.sample.parameter);
   if (result.ipopt_checked) {

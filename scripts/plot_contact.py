@@ -69,6 +69,9 @@ def main():
     parser.add_argument("run")
     parser.add_argument("--n3")
     parser.add_argument("--out")
+    parser.add_argument("--from", dest="phi_from", type=float,
+                        help="leave out samples below this phi_e (default: 0.3 below the skewed "
+                             "branch; a run from flat heads its symmetric branch with the cone)")
     args = parser.parse_args()
     prefix = args.out or os.path.join(args.run, "contact")
     branches = {}
@@ -76,6 +79,13 @@ def main():
         path = os.path.join(args.run, f"branch_{name}.csv")
         if os.path.exists(path):
             branches[name] = read(path)
+    phi_from = args.phi_from
+    if phi_from is None and "skewed" in branches:
+        phi_from = min(branches["skewed"]["phi_e"]) - 0.3
+    if phi_from is not None:
+        for name, b in branches.items():
+            keep = [i for i, p in enumerate(b["phi_e"]) if p >= phi_from]
+            branches[name] = {k: [v[i] for i in keep] for k, v in b.items()}
     colours = {"symmetric": "tab:blue", "skewed": "tab:red", "n = 3": "tab:green"}
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))

@@ -45,6 +45,11 @@ void validate(const EconeBranchOptions& o) {
     throw std::invalid_argument("EconeBranchOptions::max_steps_per_branch must be >= 1");
   if (!(o.tangency_exclusion >= 0.0))
     throw std::invalid_argument("EconeBranchOptions::tangency_exclusion must be >= 0");
+  try {
+    join_branch_samples(o.symmetric_before, {});
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("EconeBranchOptions::symmetric_before: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -246,10 +251,12 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
 
   // phi_e^crit by energy. A skewed branch born at a branch point touches the symmetric one
   // there (energy difference ~ (phi - phi_b)^2): that tangency is not a crossing.
-  if (symmetric_energy.size() >= 2) {
+  const std::vector<BranchEnergySample> symmetric_joined =
+      join_branch_samples(options.symmetric_before, symmetric_energy);
+  if (symmetric_joined.size() >= 2) {
     for (const auto* part : {&down_energy, &up_energy}) {
       if (part->size() < 2) continue;
-      for (const EnergyCrossing& c : energy_crossings(symmetric_energy, *part)) {
+      for (const EnergyCrossing& c : energy_crossings(symmetric_joined, *part)) {
         if (entered_at && std::abs(c.parameter - *entered_at) < options.tangency_exclusion)
           continue;
         out.crossings.push_back(c);

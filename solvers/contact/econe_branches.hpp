@@ -70,6 +70,12 @@ struct EconeBranchOptions {
   /// constraints gap >= contact distance, from the penalty state, and compared
   /// (EconeBranchResult::ipopt_*).
   std::optional<ContactSolveOptions> verify_with_ipopt;
+  /// The symmetric branch below the start (e.g. the contact-free cone traced up to x0), by
+  /// increasing phi_e, with energies E_s + E_b (no contact there) and slopes: joined in front
+  /// of the traced symmetric branch for the energy crossing (join_branch_samples), so that a
+  /// skewed branch reaching below the start still finds its crossing. Empty: the traced
+  /// branch only.
+  std::vector<BranchEnergySample> symmetric_before;
 };
 
 /// Outcome of trace_econe_branches. Traces keep their last sample and message even when they

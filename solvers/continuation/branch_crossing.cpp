@@ -285,4 +285,23 @@ std::vector<EnergyCrossing> energy_crossings(const std::vector<BranchEnergySampl
   return result;
 }
 
+std::vector<BranchEnergySample> join_branch_samples(const std::vector<BranchEnergySample>& earlier,
+                                                    const std::vector<BranchEnergySample>& later) {
+  for (std::size_t i = 0; i < earlier.size(); ++i) {
+    if (!std::isfinite(earlier[i].parameter))
+      throw std::invalid_argument("join_branch_samples: earlier sample " + std::to_string(i) +
+                                  " has a non-finite parameter");
+    if (i > 0 && !(earlier[i].parameter > earlier[i - 1].parameter))
+      throw std::invalid_argument("join_branch_samples: earlier sample " + std::to_string(i) +
+                                  " does not increase the parameter");
+  }
+  if (later.empty()) return earlier;
+  std::vector<BranchEnergySample> joined;
+  joined.reserve(earlier.size() + later.size());
+  for (const BranchEnergySample& s : earlier)
+    if (s.parameter < later.front().parameter) joined.push_back(s);
+  joined.insert(joined.end(), later.begin(), later.end());
+  return joined;
+}
+
 }  // namespace growshell

@@ -85,4 +85,13 @@ std::vector<EnergyCrossing> energy_crossings(const std::vector<BranchEnergySampl
                                              const std::vector<BranchEnergySample>& b,
                                              double tolerance = 1e-10);
 
+/// One branch traced in two pieces: `earlier`, by strictly increasing lambda (e.g. the
+/// contact-free cone followed up to where a trace with contact starts), then `later` (that
+/// trace, starting at or above earlier's last lambda and going either way afterwards). Samples
+/// of `earlier` at or beyond later's first lambda are left out, so the shared start is not
+/// counted twice; an empty piece returns the other. Throws std::invalid_argument naming the
+/// sample if `earlier` is not strictly increasing or has a non-finite parameter.
+std::vector<BranchEnergySample> join_branch_samples(const std::vector<BranchEnergySample>& earlier,
+                                                    const std::vector<BranchEnergySample>& later);
+
 }  // namespace growshell

@@ -278,18 +278,21 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
       BranchSample hi = next;
       for (int k = 0; k < 60 && std::abs(hi.parameter - lambda_lo) > options.special_point_tolerance;
            ++k) {
-        // The midpoint may sit exactly on the singular point (zero pivot): then a point a
-        // little off the middle serves as well.
-        double s_mid = 0.5 * (s_lo + s_hi);
+        // The midpoint may sit exactly on the singular point (zero pivot), or so close to it
+        // that the corrector does not converge: then another point inside the bracket serves
+        // as well (a bracket only has to shrink). Ends the bisection only if all fail.
         BranchSample mid;
         const auto corrected_at = [&](double s) {
           return solver.correct(p.x + s * p.tangent_state, p.parameter + s * p.tangent_parameter,
                                 p.tangent_state, p.tangent_parameter, mid);
         };
-        if (!corrected_at(s_mid)) {
-          s_mid += 0.01 * (s_hi - s_lo);
-          if (!corrected_at(s_mid)) break;
+        double s_mid = 0.0;
+        bool corrected = false;
+        for (const double fraction : {0.5, 0.51, 0.25, 0.75, 0.1, 0.9}) {
+          s_mid = s_lo + fraction * (s_hi - s_lo);
+          if ((corrected = corrected_at(s_mid))) break;
         }
+        if (!corrected) break;
         if (mid.negative_eigenvalues == p.negative_eigenvalues) {
           s_lo = s_mid;
           lambda_lo = mid.parameter;

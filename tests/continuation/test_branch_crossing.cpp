@@ -243,5 +243,39 @@ TEST(EnergyCrossings, BadInputThrowsNamingTheSample) {
   expect_message(good, good, 0.0, "tolerance");
 }
 
+// A branch traced in two pieces (the contact-free cone, then the trace with contact from
+// its last sample) crosses another branch in its first piece: only the joined samples find it.
+TEST(JoinBranchSamples, CrossingInTheEarlierPieceIsFoundOnlyOnTheJoinedBranch) {
+  const auto earlier = sample_on(grid(0.0, 0.1, 11), energy_a, slope_a);  // 0 .. 1.0
+  const auto later = sample_on(grid(1.0, 0.1, 21), energy_a, slope_a);    // 1.0 .. 3.0
+  const auto other = sample_on(grid(0.0, 0.1, 31), energy_b, slope_b);
+  const std::vector<BranchEnergySample> joined = join_branch_samples(earlier, later);
+  ASSERT_EQ(joined.size(), earlier.size() - 1 + later.size());  // the shared 1.0 once
+  for (std::size_t i = 1; i < joined.size(); ++i)
+    EXPECT_GT(joined[i].parameter, joined[i - 1].parameter);
+  const double first = exact_analytic_root(0.0, 1.0), second = exact_analytic_root(2.0, 3.0);
+  const std::vector<EnergyCrossing> alone = energy_crossings(later, other);
+  ASSERT_EQ(alone.size(), 1u);
+  EXPECT_NEAR(alone[0].parameter, second, 1e-4);
+  const std::vector<EnergyCrossing> both = energy_crossings(joined, other);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_NEAR(both[0].parameter, first, 1e-4);
+  EXPECT_NEAR(both[1].parameter, second, 1e-4);
+  EXPECT_EQ(join_branch_samples({}, later).size(), later.size());
+  EXPECT_EQ(join_branch_samples(earlier, {}).size(), earlier.size());
+}
+
+TEST(JoinBranchSamples, EarlierPieceMustIncrease) {
+  auto earlier = sample_on(grid(0.0, 0.1, 5), energy_a, slope_a);
+  earlier[3].parameter = earlier[2].parameter;
+  try {
+    join_branch_samples(earlier, {});
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("earlier sample 3 does not increase"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace growshell
