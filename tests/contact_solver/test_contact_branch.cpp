@@ -325,6 +325,22 @@ TEST(ContactBranch, BadOptionsAreRejectedByName) {
   }
 }
 
+TEST(EconeBranches, SymmetricBranchBeforeTheStartMustIncrease) {
+  GrownDisc& d = disc();
+  EconeBranchOptions o;
+  o.contact = d.options();
+  o.symmetric_before = {{5.0, 1.0, 0.0}, {5.1, 1.0, 0.0}, {5.1, 1.0, 0.0}};
+  try {
+    trace_econe_branches(d.model, d.proxy, d.start(), GrownDisc::kStart, d.pinned, o);
+    ADD_FAILURE() << "no exception for a repeated parameter";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "EconeBranchOptions::symmetric_before: join_branch_samples: earlier sample 2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Choosing new rigid-motion pins at every segment (repin_above_condition = 1: every pin set
 // exceeds it) changes the gauge, not the branch: the total energy of every sample lies on the
 // branch traced with fixed pins (cubic Hermite interpolation between its samples with the
