@@ -230,16 +230,23 @@ int run(int argc, char** argv) {
                                std::to_string(cone.last.parameter) + ": " + cone.message);
     x = cone.last.x;
     phi = cone.last.parameter;
-    // The cone was traced without contact: it must not have reached it.
+    // The cone was traced without contact: if it went past first contact, the trace with
+    // contact starts from its last sample still free of it (the later ones are dropped).
     const double distance = scene.physics.contact_distance.value_or(h);
-    const ContactCandidates near =
-        near_contact_pairs(proxy, x, distance, resolved_exclusion_radius(scene));
-    if (!near.empty())
-      throw std::invalid_argument("--phi-contact-start " + std::to_string(phi_contact_start) +
-                                  " lies past first contact: the contact-free cone has a pair " +
-                                  std::to_string(smallest_pair_distance(proxy, near, x)) +
-                                  " m apart there (contact at " + std::to_string(distance) +
-                                  " m); lower it");
+    const double exclusion = resolved_exclusion_radius(scene);
+    while (!cone_samples.empty() &&
+           !near_contact_pairs(proxy, cone_samples.back().x, distance, exclusion).empty())
+      cone_samples.pop_back();
+    if (cone_samples.empty())
+      throw std::runtime_error("the contact-free cone has no sample free of contact");
+    if (cone_samples.back().parameter < phi) {
+      std::printf(
+          "# --phi-contact-start %g lies past first contact: starting from the cone's "
+          "last contact-free sample at phi_e = %.4f\n",
+          phi_contact_start, cone_samples.back().parameter);
+      x = cone_samples.back().x;
+      phi = cone_samples.back().parameter;
+    }
     std::printf(
         "# buckled at phi_e = %.7f; cone traced without contact to phi_e = %.4f in %d "
         "steps (%.1f s)\n",
