@@ -5,7 +5,12 @@
 // both ways: where the energies of the two branches cross, and where the symmetric branch
 // loses stability (solvers/contact/econe_branches.hpp). One line per thickness on stdout and
 // in DIR/crit_vs_h.csv; each thickness's branches and events as trace_contact writes them are
-// not kept (run trace_contact --h H for those).
+// not kept (run trace_contact --h H for those). With --phi-contact-start the cone is instead
+// traced from flat by continuation without contact (solvers/contact/contact_free_cone.hpp),
+// which passes the symmetric cone's subcritical branch point, and its samples join the
+// symmetric branch for the crossing: with an exclusion radius that leaves the apex core out of
+// the contact (--exclusion-factor 8) this gives the proxy-converged phi_e^crit (docs/contact.md,
+// "Exclusion radius").
 #include <Eigen/Core>
 #include <chrono>
 #include <cmath>
@@ -15,6 +20,7 @@
 #include <iomanip>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -25,6 +31,7 @@
 #include "examples/support/scene_command_line.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/io/scene.hpp"
+#include "solvers/contact/contact_free_cone.hpp"
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -41,6 +48,11 @@ const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
   --h LIST            thicknesses, comma separated (default 0.04,0.03,0.02,0.015)
   --rings N           mesh rings (default: the scene's)
   --phi-start P       contact-free growth from flat up to P (default 5.0)
+  --phi-contact-start P  instead: the cone traced from flat by continuation up to P (below
+                      first contact; e.g. 6.25 with --exclusion-factor 8), its samples part of
+                      the symmetric branch
+  --exclusion-factor F  exclusion radius F h for every h (default: the scene's,
+                      physics.contact_exclusion_radius; auto = pi h / 2)
   --phi-top P         the symmetric branch is followed up to P and relaxed there (default 7.0)
   --stiffness-factor F  penalty stiffness k = F Y l^2 / h (default 10)
   --max-step S        largest arclength step (default 0.05)
@@ -80,6 +92,8 @@ int run(int argc, char** argv) {
   const std::vector<double> thicknesses = parse_list(cl.text("--h", "0.04,0.03,0.02,0.015"));
   const std::string rings = cl.text("--rings", "");
   const double phi_start = cl.number("--phi-start", 5.0);
+  const double phi_contact_start = cl.number("--phi-contact-start", 0.0);
+  const double exclusion_factor = cl.number("--exclusion-factor", 0.0);
   const double phi_top = cl.number("--phi-top", 7.0);
   const double stiffness_factor = cl.number("--stiffness-factor", 10.0);
   const double max_step = cl.number("--max-step", 0.05);
@@ -88,6 +102,10 @@ int run(int argc, char** argv) {
   cl.reject_unknown();
   if (!(phi_start > 0.0 && phi_start < phi_top))
     throw std::invalid_argument("need 0 < --phi-start < --phi-top");
+  if (!(phi_contact_start >= 0.0 && phi_contact_start < phi_top))
+    throw std::invalid_argument("--phi-contact-start must be in (0, --phi-top)");
+  if (!(exclusion_factor == 0.0 || exclusion_factor >= 1.0))
+    throw std::invalid_argument("--exclusion-factor must be >= 1 (the contact distance h)");
   if (!(stiffness_factor > 0.0)) throw std::invalid_argument("--stiffness-factor must be > 0");
   if (!(max_step > 0.0)) throw std::invalid_argument("--max-step must be > 0");
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
@@ -107,6 +125,9 @@ int run(int argc, char** argv) {
     const auto t0 = Clock::now();
     Scene scene = base;
     apply_override(scene, "thickness", number_or_nan(h));
+    if (exclusion_factor > 0.0)
+      apply_override(scene, "physics.contact_exclusion_radius",
+                     number_or_nan(exclusion_factor * h));
     validate_scene(scene);
     ShellModel model(scene_mesh(scene), scene_model_settings(scene));
     const double R = scene.geometry.radius;
@@ -121,21 +142,58 @@ int run(int argc, char** argv) {
     newton.decrement_tolerance =
         1e-9 * Y * h * h * h;  // tight: the traces starting here test the force
 
-    std::mt19937 rng(scene.continuation.seed);
-    const double amplitude = scene.continuation.perturbation_amplitude;
-    GrowthPathOptions path_options;
-    path_options.max_step = 0.25;
-    const GrowthPathResult path = grow_along_path(
-        model, X + examples::disc_perturbation(model, amplitude, rng, R), 0.0, phi_start, pinned,
-        NewtonSolver(newton),
-        [&](int) { return examples::disc_perturbation(model, amplitude, rng, R); }, path_options);
-    if (!path.reached_target) {
-      std::printf("%8.4f  growth from flat ended at phi_e = %.4f: %s\n", h, path.last.excess_angle,
-                  path.message.c_str());
-      csv << h << ",nan,nan,nan,nan,0,0,0,0,"
-          << std::chrono::duration<double>(Clock::now() - t0).count() << '\n';
-      csv.flush();
-      continue;
+    // The start of the traces with contact: natural growth from flat to --phi-start, or the
+    // cone by continuation to --phi-contact-start (its samples join the symmetric branch).
+    Eigen::VectorXd start;
+    double start_phi = 0.0;
+    std::vector<BranchSample> cone_samples;
+    std::optional<SpecialPoint> cone_stability_loss;
+    if (phi_contact_start > 0.0) {
+      ContactFreeConeOptions cone_options;
+      cone_options.arclength.initial_step = scene.continuation.max_step / 4;
+      cone_options.arclength.max_step = scene.continuation.max_step;
+      cone_options.arclength.min_step =
+          1e-6;  // as the traces with contact: it passes the branch point
+      cone_options.arclength.gradient_tolerance = tolerance * model.natural_force_scale();
+      cone_options.arclength.parameter_max = phi_contact_start;
+      cone_options.entry.thickness = h;
+      cone_options.entry.radius = R;
+      cone_options.contact_distance = scene.physics.contact_distance.value_or(h);
+      cone_options.exclusion_radius = resolved_exclusion_radius(scene);
+      ContactFreeCone cone = trace_contact_free_cone(model, proxy, pinned, cone_options);
+      if (!cone.found) {
+        std::printf("%8.4f  %s\n", h, cone.message.c_str());
+        csv << h << ",nan,nan,nan,nan,0,0,0,0,"
+            << std::chrono::duration<double>(Clock::now() - t0).count() << '\n';
+        csv.flush();
+        continue;
+      }
+      for (const SpecialPoint& p : cone.special_points)
+        if (!cone_stability_loss && p.negative_before == 0 && p.negative_after > 0)
+          cone_stability_loss = p;
+      start = cone.start.x;
+      start_phi = cone.start.parameter;
+      cone_samples = std::move(cone.samples);
+      cone_samples.pop_back();  // the start: the first sample of the trace with contact
+    } else {
+      std::mt19937 rng(scene.continuation.seed);
+      const double amplitude = scene.continuation.perturbation_amplitude;
+      GrowthPathOptions path_options;
+      path_options.max_step = 0.25;
+      const GrowthPathResult path = grow_along_path(
+          model, X + examples::disc_perturbation(model, amplitude, rng, R), 0.0, phi_start, pinned,
+          NewtonSolver(newton),
+          [&](int) { return examples::disc_perturbation(model, amplitude, rng, R); }, path_options);
+      if (!path.reached_target) {
+        std::printf("%8.4f  growth from flat ended at phi_e = %.4f: %s\n", h,
+                    path.last.excess_angle, path.message.c_str());
+        csv << h << ",nan,nan,nan,nan,0,0,0,0,"
+            << std::chrono::duration<double>(Clock::now() - t0).count() << '\n';
+        csv.flush();
+        continue;
+      }
+      start = path.last.x;
+      start_phi = path.last.excess_angle;
     }
 
     EconeBranchOptions options;
@@ -157,11 +215,15 @@ int run(int argc, char** argv) {
     options.skewed_start = SkewedStart::Top;
     options.relaxation = newton;
     options.relaxation.max_iterations = 400;
+    options.symmetric_before = contact_free_energies(model, cone_samples);
     const EconeBranchResult r =
-        trace_econe_branches(model, proxy, path.last.x, path.last.excess_angle, pinned, options);
+        trace_econe_branches(model, proxy, start, start_phi, pinned, options);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double contact = r.first_contact ? r.first_contact->parameter : nan;
-    const double stability = r.stability_loss ? r.stability_loss->parameter : nan;
+    // The stability loss lies on the contact-free cone if it was traced past it.
+    const double stability = cone_stability_loss ? cone_stability_loss->parameter
+                             : r.stability_loss  ? r.stability_loss->parameter
+                                                 : nan;
     const double crossing = r.crossings.empty() ? nan : r.crossings.front().parameter;
     const double error = r.crossings.empty() ? nan : r.crossings.front().error_estimate;
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();

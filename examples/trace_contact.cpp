@@ -2,7 +2,7 @@
 // excess angle where the skewed cone takes over from the symmetric one.
 //
 // 1. The flat disc is followed by continuation to its n = 2 branch point and the cone born there
-//    (solvers/continuation/cone_branch_entry.hpp) up to --phi-contact-start (below first
+//    (solvers/contact/contact_free_cone.hpp) up to --phi-contact-start (below first
 //    contact), or a saved state is loaded (--start).
 // 2. The symmetric branch is followed by pseudo-arclength continuation with the contact penalty
 //    (solvers/contact/contact_branch.hpp) up to --phi-max, also where it is unstable; first
@@ -44,11 +44,10 @@
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/contact/contact_branch.hpp"
+#include "solvers/contact/contact_free_cone.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/contact_zones.hpp"
 #include "solvers/contact/econe_branches.hpp"
-#include "solvers/continuation/cone_branch_entry.hpp"
-#include "solvers/continuation/parametrized_objective.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -207,50 +206,33 @@ int run(int argc, char** argv) {
     // (folds on the mesh's mirror axes). Natural growth steps from a perturbed flat disc let
     // the fold pattern creep round instead and stop wherever Newton's decrement test stops the
     // crawl, on a saddle of the orientation (docs/validation.md).
-    ShellGrowthFamily free_family(model);
-    ArclengthOptions cone_options;
-    cone_options.initial_step = scene.continuation.max_step / 4;
-    cone_options.max_step = scene.continuation.max_step;
-    cone_options.min_step = scene.continuation.min_step;
-    cone_options.gradient_tolerance = tolerance * model.natural_force_scale();
-    cone_options.parameter_max = phi_contact_start;
-    ConeEntryOptions entry_options;
-    entry_options.folds = 2;
-    entry_options.thickness = h;
-    entry_options.radius = R;
-    const ConeBranchEntry entry =
-        enter_cone_branch(free_family, model, entry_options, pinned, cone_options);
-    if (!entry.found) throw std::runtime_error("the flat disc did not buckle: " + entry.message);
-    const BranchTrace cone = trace_branch_along(
-        free_family, entry.start, entry.branch_point.parameter, entry.mode, 0.0, pinned,
-        cone_options, [&](const BranchSample& s) { cone_samples.push_back(s); },
-        [&](const SpecialPoint& p) { cone_special_points.push_back(p); });
-    if (!cone.reached_bound)
-      throw std::runtime_error("the contact-free cone ended at phi_e = " +
-                               std::to_string(cone.last.parameter) + ": " + cone.message);
-    x = cone.last.x;
-    phi = cone.last.parameter;
-    // The cone was traced without contact: if it went past first contact, the trace with
-    // contact starts from its last sample still free of it (the later ones are dropped).
-    const double distance = scene.physics.contact_distance.value_or(h);
-    const double exclusion = resolved_exclusion_radius(scene);
-    while (!cone_samples.empty() &&
-           !near_contact_pairs(proxy, cone_samples.back().x, distance, exclusion).empty())
-      cone_samples.pop_back();
-    if (cone_samples.empty())
-      throw std::runtime_error("the contact-free cone has no sample free of contact");
-    if (cone_samples.back().parameter < phi) {
+    ContactFreeConeOptions cone_options;
+    cone_options.arclength.initial_step = scene.continuation.max_step / 4;
+    cone_options.arclength.max_step = scene.continuation.max_step;
+    cone_options.arclength.min_step =
+        1e-6;  // as the trace with contact: it passes the branch point
+    cone_options.arclength.gradient_tolerance = tolerance * model.natural_force_scale();
+    cone_options.arclength.parameter_max = phi_contact_start;
+    cone_options.entry.folds = 2;
+    cone_options.entry.thickness = h;
+    cone_options.entry.radius = R;
+    cone_options.contact_distance = scene.physics.contact_distance.value_or(h);
+    cone_options.exclusion_radius = resolved_exclusion_radius(scene);
+    ContactFreeCone cone = trace_contact_free_cone(model, proxy, pinned, cone_options);
+    if (!cone.found) throw std::runtime_error(cone.message);
+    if (cone.stopped_before_contact)
       std::printf(
-          "# --phi-contact-start %g lies past first contact: starting from the cone's "
-          "last contact-free sample at phi_e = %.4f\n",
-          phi_contact_start, cone_samples.back().parameter);
-      x = cone_samples.back().x;
-      phi = cone_samples.back().parameter;
-    }
+          "# --phi-contact-start %g lies past first contact: starting from the cone's last "
+          "contact-free sample\n",
+          phi_contact_start);
+    x = cone.start.x;
+    phi = cone.start.parameter;
+    cone_samples = std::move(cone.samples);
+    cone_special_points = std::move(cone.special_points);
     std::printf(
         "# buckled at phi_e = %.7f; cone traced without contact to phi_e = %.4f in %d "
         "steps (%.1f s)\n",
-        entry.branch_point.parameter, phi, cone.steps,
+        cone.buckling_parameter, phi, cone.steps,
         std::chrono::duration<double>(Clock::now() - wall_start).count());
   }
 
@@ -395,18 +377,12 @@ int run(int argc, char** argv) {
   // The contact-free cone (from flat): its samples head the symmetric branch, and its special
   // points are the symmetric branch's (the subcritical stability loss can lie below the start
   // of the trace with contact, e.g. with an exclusion radius that covers the apex core).
-  for (const BranchSample& c : cone_samples) {
-    if (!(c.parameter < phi)) continue;  // the last one starts the trace with contact
-    const ContactBranchSample described =
-        describe_contact_sample(model, proxy, c, ContactCandidates{}, options);
-    branches.symmetric_before.push_back({c.parameter,
-                                         described.stretching_energy + described.bending_energy,
-                                         described.energy_slope});
-    write_sample(symmetric, described);
-  }
+  if (!cone_samples.empty()) cone_samples.pop_back();  // the start of the trace with contact
+  for (const BranchSample& c : cone_samples)
+    write_sample(symmetric, describe_contact_sample(model, proxy, c, ContactCandidates{}, options));
+  branches.symmetric_before = contact_free_energies(model, cone_samples);
   cone_samples.clear();
-  for (const SpecialPoint& p : cone_special_points)
-    if (p.parameter < phi) callbacks.on_special(EconeBranch::Symmetric, p);
+  for (const SpecialPoint& p : cone_special_points) callbacks.on_special(EconeBranch::Symmetric, p);
   callbacks.on_event = [&](const LocatedEvent& e) {
     add_event(e.kind, e.parameter, ", \"bracket\": " + json_number(e.bracket_width));
   };
