@@ -224,8 +224,12 @@ int run(int argc, char** argv) {
     const double stability = cone_stability_loss ? cone_stability_loss->parameter
                              : r.stability_loss  ? r.stability_loss->parameter
                                                  : nan;
-    const double crossing = r.crossings.empty() ? nan : r.crossings.front().parameter;
-    const double error = r.crossings.empty() ? nan : r.crossings.front().error_estimate;
+    // phi_e^crit by energy: the first crossing with the stable part of the skewed branch.
+    const EnergyCrossing* chosen = nullptr;
+    for (std::size_t k = 0; k < r.crossings.size() && chosen == nullptr; ++k)
+      if (r.crossing_skewed_stable[k]) chosen = &r.crossings[k];
+    const double crossing = chosen ? chosen->parameter : nan;
+    const double error = chosen ? chosen->error_estimate : nan;
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     std::printf("%8.4f %12.6f %14.7f %14.7f %10.2e %6s %8.1f\n", h, contact, stability, crossing,
                 error, r.skewed_found ? "yes" : "no", seconds);

@@ -419,9 +419,11 @@ int run(int argc, char** argv) {
           << ", \"seconds\": " << json_number(result.ipopt_seconds);
     add_event("ipopt_check", result.skew_search_parameter, extra.str());
   }
-  for (const EnergyCrossing& c : result.crossings) {
+  for (std::size_t k = 0; k < result.crossings.size(); ++k) {
+    const EnergyCrossing& c = result.crossings[k];
     std::ostringstream extra;
-    extra << ", \"energy\": " << json_number(c.energy)
+    extra << ", \"skewed_stable\": " << (result.crossing_skewed_stable[k] ? "true" : "false")
+          << ", \"energy\": " << json_number(c.energy)
           << ", \"slope_difference\": " << json_number(c.slope_difference)
           << ", \"error_estimate\": " << json_number(c.error_estimate);
     add_event("energy_crossing", c.parameter, extra.str());

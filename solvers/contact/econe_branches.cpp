@@ -123,9 +123,13 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
 
   // The skewed branch.
   const auto t_search = Clock::now();
-  const auto on_skewed_sample = [&](std::vector<BranchEnergySample>& energies) {
+  // Negative counts of the skewed samples, parallel to down_energy / up_energy.
+  std::vector<int> down_negative, up_negative;
+  const auto on_skewed_sample = [&](std::vector<BranchEnergySample>& energies,
+                                    std::vector<int>& negative) {
     return [&](const ContactBranchSample& s) {
       energies.push_back(energy_of(s));
+      negative.push_back(s.sample.negative_eigenvalues);
       if (callbacks.on_sample) callbacks.on_sample(EconeBranch::Skewed, s);
     };
   };
@@ -159,9 +163,9 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     // Off the branch point by h_c / 4 at the mode's largest entry: far enough for the corrector
     // to stay off the symmetric branch, close enough to land on the bifurcating one.
     const double offset = 0.25 * h_c / mode.cwiseAbs().maxCoeff();
-    out.skewed_up =
-        trace_contact_branch(model, proxy, bp.x + offset * mode, bp.parameter, mode, 0.0, pins,
-                             skewed_options, on_skewed_sample(up_energy), on_skewed_special);
+    out.skewed_up = trace_contact_branch(
+        model, proxy, bp.x + offset * mode, bp.parameter, mode, 0.0, pins, skewed_options,
+        on_skewed_sample(up_energy, up_negative), on_skewed_special);
   } else {
     const BranchSample top = search_start.x.size() > 0 ? search_start : out.symmetric.last.sample;
     out.skew_search_parameter = top.parameter;
@@ -238,12 +242,12 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       down_options.arclength.parameter_max = top.parameter;
       out.skewed_down = trace_contact_branch(
           model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0, pins,
-          down_options, on_skewed_sample(down_energy), on_skewed_special);
+          down_options, on_skewed_sample(down_energy, down_negative), on_skewed_special);
       note("skewed branch, downwards: " + out.skewed_down.message);
       if (options.skewed_end > top.parameter) {
         out.skewed_up = trace_contact_branch(
             model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), 1.0, pins,
-            skewed_options, on_skewed_sample(up_energy), on_skewed_special);
+            skewed_options, on_skewed_sample(up_energy, up_negative), on_skewed_special);
         note("skewed branch, upwards: " + out.skewed_up.message);
       }
     }
@@ -254,28 +258,41 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
   const std::vector<BranchEnergySample> symmetric_joined =
       join_branch_samples(options.symmetric_before, symmetric_energy);
   if (symmetric_joined.size() >= 2) {
-    for (const auto* part : {&down_energy, &up_energy}) {
+    struct Found {
+      EnergyCrossing crossing;
+      bool skewed_stable;  // both skewed samples around it are stable
+    };
+    std::vector<Found> found;
+    const std::pair<const std::vector<BranchEnergySample>*, const std::vector<int>*> parts[] = {
+        {&down_energy, &down_negative}, {&up_energy, &up_negative}};
+    for (const auto& [part, negative] : parts) {
       if (part->size() < 2) continue;
       for (const EnergyCrossing& c : energy_crossings(symmetric_joined, *part)) {
         if (entered_at && std::abs(c.parameter - *entered_at) < options.tangency_exclusion)
           continue;
-        out.crossings.push_back(c);
+        found.push_back({c, (*negative)[c.segment_b] == 0 && (*negative)[c.segment_b + 1] == 0});
       }
     }
-    std::sort(
-        out.crossings.begin(), out.crossings.end(),
-        [](const EnergyCrossing& a, const EnergyCrossing& b) { return a.parameter < b.parameter; });
+    std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+      return a.crossing.parameter < b.crossing.parameter;
+    });
     // Both skewed traces can run over the same stretch of the branch (the downward one back up
     // past its fold, the upward one back down past its upper fold): one crossing each time.
-    std::vector<EnergyCrossing> distinct;
-    for (const EnergyCrossing& c : out.crossings) {
-      if (!distinct.empty() && std::abs(c.parameter - distinct.back().parameter) < 1e-5) {
-        if (c.error_estimate < distinct.back().error_estimate) distinct.back() = c;
+    std::vector<Found> distinct;
+    for (const Found& f : found) {
+      if (!distinct.empty() &&
+          std::abs(f.crossing.parameter - distinct.back().crossing.parameter) < 1e-5) {
+        if (f.crossing.error_estimate < distinct.back().crossing.error_estimate)
+          distinct.back().crossing = f.crossing;
+        distinct.back().skewed_stable = distinct.back().skewed_stable || f.skewed_stable;
         continue;
       }
-      distinct.push_back(c);
+      distinct.push_back(f);
     }
-    out.crossings = std::move(distinct);
+    for (const Found& f : distinct) {
+      out.crossings.push_back(f.crossing);
+      out.crossing_skewed_stable.push_back(f.skewed_stable);
+    }
   }
   return out;
 }

@@ -95,6 +95,10 @@ struct EconeBranchResult {
   /// Energy crossings of the two branches (E_s + E_b + P), by parameter: phi_e^crit by energy.
   /// A crossing met by both skewed traces (within 1e-5) is listed once.
   std::vector<EnergyCrossing> crossings;
+  /// Per crossing: the skewed samples on both sides of it are stable (negative count 0). A
+  /// skewed trace that runs on past the branch's folds crosses the symmetric branch on its
+  /// unstable parts too; the exchange of ground states is the first crossing flagged here.
+  std::vector<bool> crossing_skewed_stable;
   double skewed_search_seconds = 0.0;
   /// The Ipopt check of the relaxed skewed state (EconeBranchOptions::verify_with_ipopt).
   bool ipopt_checked = false;
