@@ -331,7 +331,8 @@ TEST(EconeBranches, SymmetricBranchBeforeTheStartMustIncrease) {
   o.contact = d.options();
   o.symmetric_before = {{5.0, 1.0, 0.0}, {5.1, 1.0, 0.0}, {5.1, 1.0, 0.0}};
   try {
-    trace_econe_branches(d.model, d.proxy, d.start(), GrownDisc::kStart, d.pinned, o);
+    // The options are checked before anything is traced: the flat disc serves as the start.
+    trace_econe_branches(d.model, d.proxy, d.model.reference_positions(), 0.0, d.pinned, o);
     ADD_FAILURE() << "no exception for a repeated parameter";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(
