@@ -224,6 +224,10 @@ int run(int argc, char** argv) {
     const double stability = cone_stability_loss ? cone_stability_loss->parameter
                              : r.stability_loss  ? r.stability_loss->parameter
                                                  : nan;
+    for (std::size_t k = 0; k < r.crossings.size(); ++k)
+      std::printf("#   crossing at phi_e = %.7f: slope difference %.3e J/rad, skewed %s\n",
+                  r.crossings[k].parameter, r.crossings[k].slope_difference,
+                  r.crossing_skewed_stable[k] ? "stable" : "unstable");
     // phi_e^crit by energy: the first crossing with the stable part of the skewed branch.
     const EnergyCrossing* chosen = nullptr;
     for (std::size_t k = 0; k < r.crossings.size() && chosen == nullptr; ++k)

@@ -45,6 +45,8 @@ void validate(const EconeBranchOptions& o) {
     throw std::invalid_argument("EconeBranchOptions::max_steps_per_branch must be >= 1");
   if (!(o.tangency_exclusion >= 0.0))
     throw std::invalid_argument("EconeBranchOptions::tangency_exclusion must be >= 0");
+  if (!(o.coincidence_slope_ratio >= 0.0 && o.coincidence_slope_ratio < 1.0))
+    throw std::invalid_argument("EconeBranchOptions::coincidence_slope_ratio must be in [0, 1)");
   try {
     join_branch_samples(o.symmetric_before, {});
   } catch (const std::invalid_argument& e) {
@@ -270,6 +272,12 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
       for (const EnergyCrossing& c : energy_crossings(symmetric_joined, *part)) {
         if (entered_at && std::abs(c.parameter - *entered_at) < options.tangency_exclusion)
           continue;
+        // A skewed trace that ran through the subcritical branch point back onto the symmetric
+        // branch interpolates the same energies as the symmetric samples: their "crossings"
+        // (every interval, slope differences ~1e-7 of the slopes) are not crossings.
+        const double slope_scale = std::max(std::abs(symmetric_joined[c.segment_a].energy_slope),
+                                            std::abs((*part)[c.segment_b].energy_slope));
+        if (std::abs(c.slope_difference) < options.coincidence_slope_ratio * slope_scale) continue;
         found.push_back({c, (*negative)[c.segment_b] == 0 && (*negative)[c.segment_b + 1] == 0});
       }
     }

@@ -325,7 +325,7 @@ TEST(ContactBranch, BadOptionsAreRejectedByName) {
   }
 }
 
-TEST(EconeBranches, SymmetricBranchBeforeTheStartMustIncrease) {
+TEST(EconeBranches, BadSymmetricBranchBeforeTheStartAndCoincidenceRatioAreNamed) {
   GrownDisc& d = disc();
   EconeBranchOptions o;
   o.contact = d.options();
@@ -339,6 +339,14 @@ TEST(EconeBranches, SymmetricBranchBeforeTheStartMustIncrease) {
                   "EconeBranchOptions::symmetric_before: join_branch_samples: earlier sample 2"),
               std::string::npos)
         << e.what();
+  }
+  o.symmetric_before.clear();
+  o.coincidence_slope_ratio = 1.5;
+  try {
+    trace_econe_branches(d.model, d.proxy, d.model.reference_positions(), 0.0, d.pinned, o);
+    ADD_FAILURE() << "no exception for coincidence_slope_ratio = 1.5";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("coincidence_slope_ratio"), std::string::npos) << e.what();
   }
 }
 
