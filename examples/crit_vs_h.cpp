@@ -215,6 +215,9 @@ int run(int argc, char** argv) {
     options.skewed_start = SkewedStart::Top;
     options.relaxation = newton;
     options.relaxation.max_iterations = 400;
+    // As trace_contact: the decrement test stops the relaxation's crawl along the nearly free
+    // orientation mode of the fold pattern (with 1e-9 Y h^3 no relaxation at h = 0.01 ended).
+    options.relaxation.decrement_tolerance = 1e-6 * Y * h * h * h;
     options.symmetric_before = contact_free_energies(model, cone_samples);
     const EconeBranchResult r =
         trace_econe_branches(model, proxy, start, start_phi, pinned, options);
