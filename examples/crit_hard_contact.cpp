@@ -20,7 +20,6 @@
 #include <iomanip>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>

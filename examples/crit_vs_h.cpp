@@ -19,7 +19,6 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <random>
 #include <sstream>
