@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "examples/support/contact_free_cone_options.hpp"
 #include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/scene_command_line.hpp"
@@ -148,17 +149,8 @@ int run(int argc, char** argv) {
     std::vector<BranchSample> cone_samples;
     std::optional<SpecialPoint> cone_stability_loss;
     if (phi_contact_start > 0.0) {
-      ContactFreeConeOptions cone_options;
-      cone_options.arclength.initial_step = scene.continuation.max_step / 4;
-      cone_options.arclength.max_step = scene.continuation.max_step;
-      cone_options.arclength.min_step =
-          1e-6;  // as the traces with contact: it passes the branch point
-      cone_options.arclength.gradient_tolerance = tolerance * model.natural_force_scale();
-      cone_options.arclength.parameter_max = phi_contact_start;
-      cone_options.entry.thickness = h;
-      cone_options.entry.radius = R;
-      cone_options.contact_distance = scene.physics.contact_distance.value_or(h);
-      cone_options.exclusion_radius = resolved_exclusion_radius(scene);
+      const ContactFreeConeOptions cone_options =
+          examples::contact_free_cone_options(scene, model, tolerance, phi_contact_start);
       ContactFreeCone cone = trace_contact_free_cone(model, proxy, pinned, cone_options);
       if (!cone.found) {
         std::printf("%8.4f  %s\n", h, cone.message.c_str());

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "examples/support/contact_free_cone_options.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/hard_contact_options.hpp"
 #include "examples/support/json_number.hpp"
@@ -206,18 +207,8 @@ int run(int argc, char** argv) {
     // (folds on the mesh's mirror axes). Natural growth steps from a perturbed flat disc let
     // the fold pattern creep round instead and stop wherever Newton's decrement test stops the
     // crawl, on a saddle of the orientation (docs/validation.md).
-    ContactFreeConeOptions cone_options;
-    cone_options.arclength.initial_step = scene.continuation.max_step / 4;
-    cone_options.arclength.max_step = scene.continuation.max_step;
-    cone_options.arclength.min_step =
-        1e-6;  // as the trace with contact: it passes the branch point
-    cone_options.arclength.gradient_tolerance = tolerance * model.natural_force_scale();
-    cone_options.arclength.parameter_max = phi_contact_start;
-    cone_options.entry.folds = 2;
-    cone_options.entry.thickness = h;
-    cone_options.entry.radius = R;
-    cone_options.contact_distance = scene.physics.contact_distance.value_or(h);
-    cone_options.exclusion_radius = resolved_exclusion_radius(scene);
+    const ContactFreeConeOptions cone_options =
+        examples::contact_free_cone_options(scene, model, tolerance, phi_contact_start);
     ContactFreeCone cone = trace_contact_free_cone(model, proxy, pinned, cone_options);
     if (!cone.found) throw std::runtime_error(cone.message);
     if (cone.stopped_before_contact)
