@@ -369,9 +369,16 @@ int run(int argc, char** argv) {
   // points are the symmetric branch's (the subcritical stability loss can lie below the start
   // of the trace with contact, e.g. with an exclusion radius that covers the apex core).
   if (!cone_samples.empty()) cone_samples.pop_back();  // the start of the trace with contact
-  for (const BranchSample& c : cone_samples)
-    write_sample(symmetric, describe_contact_sample(model, proxy, c, ContactCandidates{}, options));
-  branches.symmetric_before = contact_free_energies(model, cone_samples);
+  // The descriptions written out carry the energies and slopes the crossing needs: one
+  // evaluation per sample.
+  for (const BranchSample& c : cone_samples) {
+    const ContactBranchSample described =
+        describe_contact_sample(model, proxy, c, ContactCandidates{}, options);
+    branches.symmetric_before.push_back({c.parameter,
+                                         described.stretching_energy + described.bending_energy,
+                                         described.energy_slope});
+    write_sample(symmetric, described);
+  }
   cone_samples.clear();
   for (const SpecialPoint& p : cone_special_points) callbacks.on_special(EconeBranch::Symmetric, p);
   callbacks.on_event = [&](const LocatedEvent& e) {
