@@ -28,6 +28,7 @@
 #include "examples/support/contact_free_cone_options.hpp"
 #include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/mirror_subspace_option.hpp"
 #include "examples/support/scene_command_line.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/io/scene.hpp"
@@ -57,6 +58,8 @@ const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
   --stiffness-factor F  penalty stiffness k = F Y l^2 / h (default 10)
   --max-step S        largest arclength step (default 0.05)
   --tolerance T       force tolerance relative to Y h^3 / R (default 1e-5)
+  --symmetric-subspace 0  trace the symmetric branch in the full space (default 1: among the
+                      states with both mirrors x -> -x, y -> -y, as trace_contact)
   --out DIR           output directory (default out/crit_vs_h)
 )";
 
@@ -98,6 +101,7 @@ int run(int argc, char** argv) {
   const double stiffness_factor = cl.number("--stiffness-factor", 10.0);
   const double max_step = cl.number("--max-step", 0.05);
   const double tolerance = cl.number("--tolerance", 1e-5);
+  const bool symmetric_subspace = cl.integer("--symmetric-subspace", 1) != 0;
   const std::string out_dir = cl.text("--out", "out/crit_vs_h");
   cl.reject_unknown();
   if (!(phi_start > 0.0 && phi_start < phi_top))
@@ -195,6 +199,8 @@ int run(int argc, char** argv) {
     c.stiffness = stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
     c.violation_tolerance = 0.25 * h;
     c.repin_above_condition = 20.0;  // as trace_contact: pins chosen again where they degrade
+    c.symmetric_subspace =
+        examples::mirror_subspace_option(model, scene.geometry.radius, symmetric_subspace);
     c.arclength.initial_step = max_step / 4;
     c.arclength.max_step = max_step;
     c.arclength.min_step = 1e-6;

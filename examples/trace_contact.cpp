@@ -37,6 +37,7 @@
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/hard_contact_options.hpp"
 #include "examples/support/json_number.hpp"
+#include "examples/support/mirror_subspace_option.hpp"
 #include "examples/support/saved_point.hpp"
 #include "examples/support/scene_command_line.hpp"
 #include "libshell/contact/contact_penalty.hpp"
@@ -100,6 +101,11 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           its lowest modes and follow what it finds down and up;
                           branch-point: enter the branch born at the symmetric branch's
                           stability loss along its critical mode
+  --symmetric-subspace 0  trace the symmetric branch in the full space instead of among the
+                          states symmetric under both mirrors x -> -x, y -> -y (default 1: the
+                          trace cannot turn onto the symmetry-breaking branches at the
+                          symmetric branch's branch points; its stability index is still the
+                          full Hessian's; needs a mesh centred at the origin)
   --out DIR               output directory (default out/contact)
 )";
 
@@ -142,6 +148,7 @@ int run(int argc, char** argv) {
   const bool ipopt_check = cl.integer("--ipopt-check", 1) != 0;
   const std::string wind_pairs = cl.text("--wind-pairs", "triangles");
   const double wind_step_bound = cl.number("--wind-step-bound", 0.25);
+  const bool symmetric_subspace = cl.integer("--symmetric-subspace", 1) != 0;
   const std::string out_dir = cl.text("--out", "out/contact");
   cl.reject_unknown();
   validate_scene(scene);
@@ -327,6 +334,8 @@ int run(int argc, char** argv) {
   branches.skewed_start = skew_from == "top" ? SkewedStart::Top : SkewedStart::BranchPoint;
   branches.skew_search_at = skew_at;
   branches.trace_skewed = skewed;
+  branches.contact.symmetric_subspace =
+      examples::mirror_subspace_option(model, R, symmetric_subspace);
   // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h.
   const ContactSolveOptions ipopt = examples::hard_contact_solve_options(
       model, h, options.contact_distance, options.exclusion_radius, options.candidate_margin,
@@ -510,6 +519,8 @@ int run(int argc, char** argv) {
       << ", \"assembly_seconds\": " << c.assembly_seconds
       << ", \"factorization_seconds\": " << c.factorization_seconds
       << ", \"solve_seconds\": " << c.solve_seconds << ", \"event_seconds\": " << c.event_seconds
+      << ", \"stability_evaluations\": " << c.stability_evaluations
+      << ", \"stability_seconds\": " << c.stability_seconds
       << ", \"continuation_seconds\": " << c.total_seconds
       << ", \"pair_search_seconds\": " << t.cost.pair_search_seconds
       << ", \"sample_seconds\": " << t.cost.sample_seconds << "}";

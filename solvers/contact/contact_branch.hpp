@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@
 #include "libshell/contact/contact_proxy.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/continuation/symmetric_subspace.hpp"
 
 namespace growshell {
 
@@ -59,6 +61,14 @@ struct ContactBranchOptions {
   /// ends the segment at the previous sample, which is retried with a rebuilt set (>= 0).
   double violation_tolerance = 0.0;
   ContactGapOptions gap;
+  /// If set (a subspace of the model's unknowns), the branch is traced in it
+  /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it
+  /// follows a symmetric branch through the branch points where it loses stability to
+  /// symmetry-breaking modes, however the steps fall. The pair set is still chosen on the full
+  /// state, and the reduced problem is that of the symmetrised penalty. The samples are full
+  /// states, and their negative count (stability index, special points) is the full
+  /// Hessian's with fixed_dofs held, one extra LDL^T factorisation per corrected point.
+  std::shared_ptr<const SymmetricSubspace> symmetric_subspace;
 };
 
 /// A converged point of a branch with contact.

@@ -139,6 +139,7 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     if (callbacks.on_special) callbacks.on_special(EconeBranch::Skewed, sp);
   };
   ContactBranchOptions skewed_options = o;
+  skewed_options.symmetric_subspace = nullptr;  // the skewed branch breaks the symmetry
   skewed_options.arclength.parameter_min = phi0 - 1.0;
   skewed_options.arclength.parameter_max = options.skewed_end;
   skewed_options.arclength.max_steps = options.max_steps_per_branch;

@@ -41,7 +41,8 @@ enum class SkewedStart {
 /// Settings of trace_econe_branches.
 struct EconeBranchOptions {
   /// Distances, stiffness, pair selection and step control of every trace (parameter bounds
-  /// and max_steps are set per branch from the fields below).
+  /// and max_steps are set per branch from the fields below). Its symmetric_subspace, if set,
+  /// applies to the symmetric branch only.
   ContactBranchOptions contact;
   double symmetric_end = 10.0;  ///< the symmetric branch is followed up to this phi_e
   /// The skewed branch is followed up to this phi_e (e.g. beyond 4 pi), and down to

@@ -121,6 +121,16 @@ class BranchSolver {
         sample.corrector_iterations = it;
         sample.negative_eigenvalues = negative_eigenvalues();
         tangent(tx, tl, sample.tangent_state, sample.tangent_parameter);
+        if (options_.stability_index) {
+          ++cost_.stability_evaluations;
+          ScopedSeconds timer(cost_.stability_seconds);
+          try {
+            sample.negative_eigenvalues = options_.stability_index(sample);
+          } catch (const std::runtime_error&) {
+            return false;
+          }
+          family_.set_parameter(lambda);
+        }
         return true;
       }
       if (it == options_.max_corrector_iterations) return false;

@@ -13,6 +13,8 @@
 
 namespace growshell {
 
+struct BranchSample;
+
 /// Step control and tolerances of trace_branch.
 struct ArclengthOptions {
   double initial_step = 0.05;  ///< first arclength step
@@ -35,6 +37,13 @@ struct ArclengthOptions {
   int max_steps = 10000;
   /// End the trace once this many special points were found (0 = no limit).
   int max_special_points = 0;
+  /// If set, the stability index of every corrected point (BranchSample::negative_eigenvalues,
+  /// and so where special points lie) is this function of the point (its x and parameter are
+  /// set) instead of the negative count of the traced Hessian. Used when tracing in a
+  /// symmetric subspace: the traced Hessian there has only the symmetric modes, and the
+  /// index that matters is the full Hessian's. It may throw std::runtime_error (e.g. at a
+  /// singular point): the point then counts as not converged.
+  std::function<int(const BranchSample&)> stability_index;
 };
 
 /// A converged point of a branch.
@@ -89,6 +98,10 @@ struct TraceCost {
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
   double event_seconds = 0.0;   ///< evaluating the event test functions
+  /// ArclengthOptions::stability_index: calls and their time (e.g. the full Hessian's
+  /// assembly and LDL^T factorisation when tracing in a symmetric subspace).
+  int stability_evaluations = 0;
+  double stability_seconds = 0.0;
   double callback_seconds = 0.0;  ///< on_sample / on_special / on_event (the caller's output)
   double total_seconds = 0.0;
 
@@ -101,6 +114,8 @@ struct TraceCost {
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;
     event_seconds += other.event_seconds;
+    stability_evaluations += other.stability_evaluations;
+    stability_seconds += other.stability_seconds;
     callback_seconds += other.callback_seconds;
     total_seconds += other.total_seconds;
     return *this;

@@ -2,6 +2,8 @@
 // simple and a double pitchfork on the trivial branch; then the flat branch of the shell.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -175,6 +177,46 @@ TEST(PseudoArclength, FindsTheBranchPointsOfSimpleAndDoublePitchforks) {
     EXPECT_EQ(sp.multiplicity, kind == ToyFamily::Kind::Pitchfork ? 1 : 2);
     EXPECT_LE(sp.bracket_width, 1e-6);
   }
+}
+
+// ArclengthOptions::stability_index replaces the traced Hessian's count (as when tracing in a
+// symmetric subspace, where the index is the full Hessian's): special points are where it
+// changes, located as precisely, and the traced Hessian's own change is not one.
+TEST(PseudoArclength, StabilityIndexDecidesWhereTheSpecialPointsAre) {
+  ToyFamily family(ToyFamily::Kind::Pitchfork, 5);
+  ArclengthOptions o = toy_options();
+  o.parameter_max = 1.0;
+  int calls = 0;
+  o.stability_index = [&](const BranchSample& s) {
+    ++calls;
+    EXPECT_EQ(s.x.size(), family.dimension());
+    return s.parameter > 0.37 ? 2 : 0;
+  };
+  std::vector<int> counts;
+  const BranchTrace trace =
+      trace_branch(family, Eigen::VectorXd::Zero(family.dimension()), -1.0, +1, {}, o,
+                   [&](const BranchSample& p) { counts.push_back(p.negative_eigenvalues); });
+  ASSERT_EQ(trace.special_points.size(), 1u) << trace.message;
+  const SpecialPoint& sp = trace.special_points[0];
+  EXPECT_EQ(sp.kind, SpecialPoint::Kind::BranchPoint);
+  EXPECT_NEAR(sp.parameter, 0.37, 1e-6);
+  EXPECT_EQ(sp.negative_before, 0);
+  EXPECT_EQ(sp.multiplicity, 2);
+  EXPECT_LE(sp.bracket_width, 1e-6);
+  EXPECT_EQ(counts.front(), 0);
+  EXPECT_EQ(counts.back(), 2);
+  EXPECT_GE(calls, static_cast<int>(counts.size()));
+  // An index that cannot be computed (a singular full Hessian) makes the point fail, as a
+  // corrector that did not converge: the trace ends at the last good sample, nothing lost.
+  o.stability_index = [](const BranchSample& s) -> int {
+    if (s.parameter > 0.5) throw std::runtime_error("singular");
+    return 0;
+  };
+  const BranchTrace stopped =
+      trace_branch(family, Eigen::VectorXd::Zero(family.dimension()), -1.0, +1, {}, o);
+  EXPECT_FALSE(stopped.reached_bound);
+  EXPECT_LE(stopped.last.parameter, 0.5);
+  EXPECT_GT(stopped.last.parameter, 0.4);
 }
 
 // A sample that lands just past a branch point (where the tangent is ill-determined) is

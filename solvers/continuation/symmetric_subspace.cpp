@@ -1,0 +1,220 @@
+#include "solvers/continuation/symmetric_subspace.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace growshell {
+
+namespace {
+
+bool same(const VertexSymmetry& a, const VertexSymmetry& b) {
+  return a.signs == b.signs && a.image == b.image;
+}
+
+/// a after b: v -> a(b(v)), signs multiplied (the S are diagonal, so they commute).
+VertexSymmetry compose(const VertexSymmetry& a, const VertexSymmetry& b) {
+  VertexSymmetry out;
+  out.signs = a.signs.cwiseProduct(b.signs);
+  out.image.resize(b.image.size());
+  for (std::size_t v = 0; v < b.image.size(); ++v)
+    out.image[v] = a.image[static_cast<std::size_t>(b.image[v])];
+  return out;
+}
+
+void validate(Eigen::Index vertex_count, const VertexSymmetry& g, std::size_t which) {
+  const std::string name = "SymmetricSubspace: generator " + std::to_string(which);
+  if (static_cast<Eigen::Index>(g.image.size()) != vertex_count)
+    throw std::invalid_argument(name + " maps " + std::to_string(g.image.size()) +
+                                " vertices, expected " + std::to_string(vertex_count));
+  std::vector<char> hit(g.image.size(), 0);
+  for (const int u : g.image) {
+    if (u < 0 || u >= vertex_count || hit[static_cast<std::size_t>(u)])
+      throw std::invalid_argument(name + " is not a permutation of the vertices");
+    hit[static_cast<std::size_t>(u)] = 1;
+  }
+  for (int c = 0; c < 3; ++c)
+    if (g.signs(c) != 1.0 && g.signs(c) != -1.0)
+      throw std::invalid_argument(name + ": signs must be +1 or -1");
+}
+
+}  // namespace
+
+SymmetricSubspace::SymmetricSubspace(Eigen::Index vertex_count,
+                                     const std::vector<VertexSymmetry>& generators) {
+  if (vertex_count < 1) throw std::invalid_argument("SymmetricSubspace: no vertices");
+  for (std::size_t k = 0; k < generators.size(); ++k) validate(vertex_count, generators[k], k);
+  generators_ = generators;
+  // The group: closure of the generators under composition.
+  VertexSymmetry identity;
+  identity.image.resize(static_cast<std::size_t>(vertex_count));
+  for (Eigen::Index v = 0; v < vertex_count; ++v)
+    identity.image[static_cast<std::size_t>(v)] = static_cast<int>(v);
+  std::vector<VertexSymmetry> group{identity};
+  for (std::size_t k = 0; k < group.size(); ++k) {
+    for (const VertexSymmetry& g : generators) {
+      VertexSymmetry h = compose(g, group[k]);
+      if (std::none_of(group.begin(), group.end(),
+                       [&](const VertexSymmetry& e) { return same(e, h); })) {
+        group.push_back(std::move(h));
+        if (group.size() > 64)
+          throw std::invalid_argument(
+              "SymmetricSubspace: the generators span more than 64 elements");
+      }
+    }
+  }
+  group_order_ = static_cast<int>(group.size());
+
+  // One column per dof orbit: sum_g S_g(c) e_{(g(v), c)}, zero if the orbit meets itself with
+  // both signs.
+  const Eigen::Index n = 3 * vertex_count;
+  std::vector<char> visited(static_cast<std::size_t>(n), 0);
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::Index column = 0;
+  for (Eigen::Index dof = 0; dof < n; ++dof) {
+    if (visited[static_cast<std::size_t>(dof)]) continue;
+    const Eigen::Index v = dof / 3;
+    const int c = static_cast<int>(dof % 3);
+    std::map<Eigen::Index, double> orbit;
+    for (const VertexSymmetry& g : group) {
+      const Eigen::Index image = 3 * g.image[static_cast<std::size_t>(v)] + c;
+      orbit[image] += g.signs(c);
+      visited[static_cast<std::size_t>(image)] = 1;
+    }
+    double norm2 = 0.0;
+    for (const auto& [i, a] : orbit) norm2 += a * a;
+    if (norm2 == 0.0) continue;  // odd under an element that fixes the dof
+    const double scale = 1.0 / std::sqrt(norm2);
+    for (const auto& [i, a] : orbit)
+      if (a != 0.0) entries.emplace_back(i, column, a * scale);
+    ++column;
+  }
+  basis_.resize(n, column);
+  basis_.setFromTriplets(entries.begin(), entries.end());
+  basis_.makeCompressed();
+}
+
+Eigen::VectorXd SymmetricSubspace::restrict_to(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (x.size() != full_dimension())
+    throw std::invalid_argument("SymmetricSubspace::restrict_to: need " +
+                                std::to_string(full_dimension()) + " entries");
+  return basis_.transpose() * x;
+}
+
+Eigen::VectorXd SymmetricSubspace::expand(const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  if (y.size() != dimension())
+    throw std::invalid_argument("SymmetricSubspace::expand: need " + std::to_string(dimension()) +
+                                " entries");
+  return basis_ * y;
+}
+
+double SymmetricSubspace::asymmetry(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const Eigen::VectorXd symmetric = expand(restrict_to(x));
+  return (x - symmetric).lpNorm<Eigen::Infinity>();
+}
+
+std::vector<Eigen::Index> SymmetricSubspace::rigid_motion_pins(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (x.size() != full_dimension())
+    throw std::invalid_argument("SymmetricSubspace::rigid_motion_pins: need " +
+                                std::to_string(full_dimension()) + " entries");
+  const Eigen::Index nv = x.size() / 3;
+  // The six rigid velocity fields at x: translations, rotations about the origin (the
+  // symmetries fix the origin, so they map rigid fields to rigid fields).
+  Eigen::MatrixXd fields = Eigen::MatrixXd::Zero(x.size(), 6);
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const Eigen::Vector3d p = x.segment<3>(3 * v);
+    for (int c = 0; c < 3; ++c) {
+      fields(3 * v + c, c) = 1.0;
+      fields.block<3, 1>(3 * v, 3 + c) = Eigen::Vector3d::Unit(c).cross(p);
+    }
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double norm = fields.col(k).norm();
+    if (norm > 0.0) fields.col(k) /= norm;
+  }
+  // Symmetric parts of the unit fields: singular values near 1 for the rigid motions in the
+  // subspace, of the order of the state's asymmetry (relative) for the others.
+  const Eigen::MatrixXd reduced = basis_.transpose() * fields;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeThinU);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  Eigen::Index rank = 0;
+  while (rank < sigma.size() && sigma(rank) > 1e-3) ++rank;
+  if (rank == 0) return {};
+  const Eigen::MatrixXd modes = svd.matrixU().leftCols(rank);  // dimension x rank
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(modes.transpose());
+  std::vector<Eigen::Index> pins;
+  for (Eigen::Index k = 0; k < rank; ++k) pins.push_back(qr.colsPermutation().indices()(k));
+  std::sort(pins.begin(), pins.end());
+  return pins;
+}
+
+RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (x.size() != full_dimension())
+    throw std::invalid_argument("SymmetricSubspace::aligning_motion: need " +
+                                std::to_string(full_dimension()) + " entries");
+  const Eigen::Index nv = x.size() / 3;
+  std::vector<int> axes;
+  std::vector<Eigen::Vector3d> normals;
+  for (const VertexSymmetry& g : generators_) {
+    if ((g.signs.array() < 0.0).count() != 1)
+      throw std::invalid_argument(
+          "SymmetricSubspace::aligning_motion: every generator must be a mirror (one sign -1)");
+    int axis = 0;
+    g.signs.minCoeff(&axis);
+    if (std::find(axes.begin(), axes.end(), axis) != axes.end())
+      throw std::invalid_argument("SymmetricSubspace::aligning_motion: two mirrors about axis " +
+                                  std::to_string(axis));
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (Eigen::Index v = 0; v < nv; ++v) {
+      const Eigen::Vector3d d =
+          x.segment<3>(3 * v) - x.segment<3>(3 * g.image[static_cast<std::size_t>(v)]);
+      scatter += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+    Eigen::Vector3d n = eigen.eigenvectors().col(2);
+    if (n(axis) < 0.0) n = -n;
+    axes.push_back(axis);
+    normals.push_back(n);
+  }
+  RigidMotion motion;
+  if (axes.size() == 1) {
+    motion.rotation = Eigen::Quaterniond::FromTwoVectors(normals[0], Eigen::Vector3d::Unit(axes[0]))
+                          .toRotationMatrix();
+  } else if (axes.size() >= 2) {
+    // Rows of R: the first two normals (Gram-Schmidt) and their cross product, placed at their
+    // axes and signed so that det R = +1; a third mirror's normal then follows.
+    const Eigen::Vector3d a = normals[0].normalized();
+    const Eigen::Vector3d b = (normals[1] - normals[1].dot(a) * a).normalized();
+    const int third = 3 - axes[0] - axes[1];
+    motion.rotation.row(axes[0]) = a.transpose();
+    motion.rotation.row(axes[1]) = b.transpose();
+    motion.rotation.row(third) = a.cross(b).transpose();
+    if (motion.rotation.determinant() < 0.0) motion.rotation.row(third) *= -1.0;
+  }
+  // Centre along each mirror axis: a symmetric vertex set has its mean on the mirror plane.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (Eigen::Index v = 0; v < nv; ++v) mean += motion.rotation * x.segment<3>(3 * v);
+  mean /= static_cast<double>(nv);
+  for (const int axis : axes) motion.translation(axis) = -mean(axis);
+  return motion;
+}
+
+SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::Index nv = X.size() / 3;
+  const Eigen::MatrixX3d points =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), nv, 3);
+  std::vector<VertexSymmetry> mirrors{mirror_symmetry(points, 0, tolerance),
+                                      mirror_symmetry(points, 1, tolerance)};
+  for (const VertexSymmetry& m : mirrors) check_maps_faces_onto_faces(model.topology(), m);
+  return SymmetricSubspace(nv, mirrors);
+}
+
+}  // namespace growshell

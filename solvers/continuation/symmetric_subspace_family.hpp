@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// A parametrised energy restricted to a symmetric subspace: E_r(y; lambda) = E(Q y; lambda)
+/// with gradient Q^T g and Hessian Q^T H Q. Its equilibria are the equilibria of E that have
+/// the symmetry, whenever E is invariant under it (then g(Q y) lies in the subspace). For an
+/// E that breaks the symmetry slightly (a contact pair set chosen with index tie-breaks), they
+/// are the equilibria of the symmetrised energy, which equals E on the subspace.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "solvers/continuation/parametrized_objective.hpp"
+#include "solvers/continuation/symmetric_subspace.hpp"
+
+namespace growshell {
+
+/// Holds references: `full` and `subspace` must outlive it.
+class SymmetricSubspaceFamily final : public ParametrizedObjective {
+ public:
+  /// Throws std::invalid_argument if the subspace is for another dimension.
+  SymmetricSubspaceFamily(ParametrizedObjective& full, const SymmetricSubspace& subspace);
+
+  Eigen::Index dimension() const override { return subspace_.dimension(); }
+  /// Upper triangle of the structural pattern of Q^T H Q (fixed, from |Q|^T |H| |Q|).
+  Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) override;
+  void set_parameter(double lambda) override { full_.set_parameter(lambda); }
+  double parameter() const override { return full_.parameter(); }
+  Eigen::VectorXd gradient_parameter_derivative(
+      const Eigen::Ref<const Eigen::VectorXd>& y) override;
+
+  const SymmetricSubspace& subspace() const { return subspace_; }
+
+ private:
+  ParametrizedObjective& full_;
+  const SymmetricSubspace& subspace_;
+  Eigen::SparseMatrix<double> basis_transpose_;
+  Eigen::SparseMatrix<double> pattern_;
+  Eigen::VectorXd full_gradient_;
+  Eigen::SparseMatrix<double> full_hessian_;
+};
+
+}  // namespace growshell
