@@ -16,10 +16,12 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/mirror_subspace_option.hpp"
 #include "examples/support/saved_point.hpp"
 #include "examples/support/scene_command_line.hpp"
 #include "libshell/analysis/core_radius.hpp"
@@ -31,6 +33,7 @@
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
@@ -56,6 +59,10 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
                       raise it where a nearly broken symmetry bends the branch sharply
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
   --eigenmodes K      at each special point write the K lowest eigenmodes (default 2; 0 = off)
+  --symmetric-subspace 1  trace the cone among the states with the mirrors of its folds (y -> -y,
+                      and x -> -x for an even number of folds): the trace cannot turn onto a
+                      branch that breaks them, e.g. at the symmetric cone's loss of stability;
+                      the stability index is still the full Hessian's (default 0; discs only)
   --out DIR           output directory (default: the scene's output.directory)
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
@@ -121,6 +128,7 @@ int run(int argc, char** argv) {
   const double max_tangent_angle = cl.number("--max-tangent-angle", 0.3);
   const double core_radius = cl.number("--core-radius", 0.0);
   const int eigenmodes = cl.integer("--eigenmodes", 2);
+  const bool symmetric_subspace = cl.integer("--symmetric-subspace", 0) != 0;
   cl.reject_unknown();
   validate_scene(scene);
 
@@ -145,6 +153,17 @@ int run(int argc, char** argv) {
   const auto pinned =
       mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
   ShellGrowthFamily family(model);
+  const std::shared_ptr<const SymmetricSubspace> subspace = examples::mirror_subspace_option(
+      model, scene.geometry.radius, symmetric_subspace, scene.continuation.mode);
+  // The cone branch, in the subspace if there is one (full states in and out either way).
+  const auto trace_cone = [&](const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
+                              double dphi, const ArclengthOptions& o, const auto& on_sample,
+                              const auto& on_special, const auto& events, const auto& on_event) {
+    return subspace ? trace_branch_in_subspace(family, *subspace, x0, phi0, dx, dphi, pinned, o,
+                                               on_sample, on_special, events, on_event)
+                    : trace_branch_along(family, x0, phi0, dx, dphi, pinned, o, on_sample,
+                                         on_special, events, on_event);
+  };
   ArclengthOptions options;
   options.initial_step = scene.continuation.max_step / 4;
   options.max_step = scene.continuation.max_step;
@@ -322,9 +341,9 @@ int run(int argc, char** argv) {
                             ? (start.tangent_parameter > 0 ? -1.0 : 1.0)
                             : (start.tangent_parameter >= 0 ? 1.0 : -1.0);
     std::printf("# resuming from %s at phi_e = %.6f\n", resume.c_str(), start.parameter);
-    trace = trace_branch_along(family, start.x, start.parameter, sign * start.tangent_state,
-                               sign * start.tangent_parameter, pinned, options, on_sample,
-                               on_special, events, on_event);
+    trace = trace_cone(start.x, start.parameter, sign * start.tangent_state,
+                       sign * start.tangent_parameter, options, on_sample, on_special, events,
+                       on_event);
   } else {
     ConeEntryOptions entry_options;
     entry_options.folds = scene.continuation.mode;
@@ -340,8 +359,8 @@ int run(int argc, char** argv) {
     }
     std::printf("# switching onto the %d-fold cone at phi_e = %.7f\n", scene.continuation.mode,
                 entry.branch_point.parameter);
-    trace = trace_branch_along(family, entry.start, entry.branch_point.parameter, entry.mode, 0.0,
-                               pinned, options, on_sample, on_special, events, on_event);
+    trace = trace_cone(entry.start, entry.branch_point.parameter, entry.mode, 0.0, options,
+                       on_sample, on_special, events, on_event);
   }
   snapshot(trace.last, "last.vtu");
   // Where the time went (flat branch + cone), also written to DIR/cost.json.

@@ -1,11 +1,13 @@
 #pragma once
-// The --symmetric-subspace option of trace_contact and crit_vs_h: the subspace of the disc's
-// two mirrors for the symmetric branch, or none (with a note saying why) where the mesh lacks
-// them (the annulus grid, a disc centred off the origin).
+// The --symmetric-subspace option of trace_contact, crit_vs_h and trace_disc: the subspace of
+// the mirrors an n-fold cone with a fold on the x-axis keeps (y -> -y, and x -> -x for even
+// n), or none, with a note saying why, where the mesh lacks them (the annulus grid, a disc
+// centred off the origin).
 
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "libshell/assembly/shell_model.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
@@ -13,10 +15,12 @@
 namespace growshell::examples {
 
 inline std::shared_ptr<const SymmetricSubspace> mirror_subspace_option(const ShellModel& model,
-                                                                       double radius, bool wanted) {
+                                                                       double radius, bool wanted,
+                                                                       int folds = 2) {
   if (!wanted) return nullptr;
   try {
-    return std::make_shared<const SymmetricSubspace>(two_mirror_subspace(model, 1e-9 * radius));
+    const std::vector<int> axes = folds % 2 == 0 ? std::vector<int>{0, 1} : std::vector<int>{1};
+    return std::make_shared<const SymmetricSubspace>(mirror_subspace(model, axes, 1e-9 * radius));
   } catch (const std::invalid_argument& e) {
     std::printf("# the symmetric branch is traced in the full space: %s\n", e.what());
     return nullptr;

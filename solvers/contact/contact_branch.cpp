@@ -12,9 +12,8 @@
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/penalized_growth_family.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
-#include "solvers/continuation/symmetric_subspace_family.hpp"
+#include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
-#include "solvers/stability/hessian_negative_count.hpp"
 
 namespace growshell {
 
@@ -148,19 +147,10 @@ ContactBranchTrace trace_contact_branch(
   ContactBranchTrace out;
   std::vector<Eigen::Index> segment_fixed = fixed_dofs;
   const ArclengthOptions& arc = options.arclength;
-  // In a symmetric subspace the trace runs in the subspace's frame (the start turned so that
-  // its mirror planes are the subspace's); everything handed out is turned back.
+  // In a symmetric subspace every segment is traced by trace_branch_in_subspace, which hands
+  // back full states in this frame.
   const SymmetricSubspace* subspace = options.symmetric_subspace.get();
-  const RigidMotion frame = subspace ? subspace->aligning_motion(x0) : RigidMotion{};
-  const auto to_caller = [&](BranchSample s) {
-    if (subspace) {
-      s.x = frame.apply_inverse(s.x);
-      if (s.tangent_state.size() == s.x.size())
-        s.tangent_state = frame.rotate_inverse(s.tangent_state);
-    }
-    return s;
-  };
-  Eigen::VectorXd start_x = frame.apply(x0), start_direction = frame.rotate(direction_state);
+  Eigen::VectorXd start_x = x0, start_direction = direction_state;
   double start_phi = phi0, start_direction_parameter = direction_parameter;
   double step = arc.initial_step;
   double margin = options.candidate_margin;
@@ -189,39 +179,12 @@ ContactBranchTrace trace_contact_branch(
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
     const int segment = out.cost.segments++;
 
-    // In a symmetric subspace: the reduced family, its rigid-motion pins, and the full
-    // Hessian's negative count as the stability index. The arclength weight is rescaled so
-    // that a step measures the same full-state change as without the subspace.
-    std::optional<SymmetricSubspaceFamily> reduced;
-    std::optional<HessianNegativeCount> full_count;
-    std::vector<Eigen::Index> reduced_pins;
-    const auto expand_sample = [&](BranchSample s) {
-      if (subspace && s.x.size() == subspace->dimension()) s.x = subspace->expand(s.x);
-      if (subspace && s.tangent_state.size() == subspace->dimension())
-        s.tangent_state = subspace->expand(s.tangent_state);
-      return s;
-    };
-    if (subspace) {
-      reduced.emplace(family, *subspace);
-      full_count.emplace(family, segment_fixed);
-      reduced_pins = subspace->rigid_motion_pins(subspace->expand(subspace->restrict_to(start_x)));
-      segment_options.state_weight =
-          arc.state_weight *
-          static_cast<double>(subspace->dimension() -
-                              static_cast<Eigen::Index>(reduced_pins.size())) /
-          static_cast<double>(model.dimension() - static_cast<Eigen::Index>(segment_fixed.size()));
-      segment_options.stability_index = [&](const BranchSample& s) {
-        return full_count->at(subspace->expand(s.x));
-      };
-    }
-
     const bool emit_start = !have_sample;
     int samples_in_segment = 0;
     BranchSample last_good;
     bool have_last_good = false;
     double previous_arclength = 0.0, last_step = step;
-    const auto on_segment_sample = [&](const BranchSample& traced) {
-      const BranchSample s = expand_sample(traced);
+    const auto on_segment_sample = [&](const BranchSample& s) {
       auto tc = Clock::now();
       const ContactCandidates close =
           near_contact_pairs(proxy, s.x, options.contact_distance - options.violation_tolerance,
@@ -245,7 +208,7 @@ ContactBranchTrace trace_contact_branch(
                         ? SpecialPoint::Kind::BranchPoint
                         : SpecialPoint::Kind::Fold;
           sp.parameter = s.parameter;
-          sp.x = frame.apply_inverse(s.x);
+          sp.x = s.x;
           sp.negative_before = out.last.sample.negative_eigenvalues;
           sp.negative_after = s.negative_eigenvalues;
           sp.multiplicity = std::abs(sp.negative_after - sp.negative_before);
@@ -253,12 +216,11 @@ ContactBranchTrace trace_contact_branch(
           out.special_points.push_back(sp);
           if (on_special) on_special(sp);
         }
-        out.last.sample = to_caller(s);
+        out.last.sample = s;
         return;
       }
       auto td = Clock::now();
-      ContactBranchSample described =
-          describe(model, &penalty, to_caller(s), pairs, proxy, options);
+      ContactBranchSample described = describe(model, &penalty, s, pairs, proxy, options);
       described.segment = segment;
       out.cost.sample_seconds += seconds_since(td);
       out.last = std::move(described);
@@ -271,29 +233,9 @@ ContactBranchTrace trace_contact_branch(
     t0 = Clock::now();
     try {
       if (subspace) {
-        // Events and special points see full states.
-        std::vector<BranchEvent> full_events = events;
-        for (BranchEvent& e : full_events)
-          e.value = [&, value = e.value](const BranchSample& s) {
-            return value(to_caller(expand_sample(s)));
-          };
-        const auto on_full_special = [&](SpecialPoint sp) {
-          sp.x = frame.apply_inverse(subspace->expand(sp.x));
-          if (on_special) on_special(sp);
-        };
-        const auto on_full_event = [&](LocatedEvent e) {
-          e.x = frame.apply_inverse(subspace->expand(e.x));
-          if (on_event) on_event(e);
-        };
-        Eigen::VectorXd direction = subspace->restrict_to(start_direction);
-        for (const Eigen::Index d : reduced_pins) direction(d) = 0.0;
-        trace = trace_branch_along(*reduced, subspace->restrict_to(start_x), start_phi, direction,
-                                   start_direction_parameter, reduced_pins, segment_options,
-                                   on_segment_sample, on_full_special, full_events, on_full_event);
-        trace.last = expand_sample(std::move(trace.last));
-        for (SpecialPoint& sp : trace.special_points)
-          sp.x = frame.apply_inverse(subspace->expand(sp.x));
-        for (LocatedEvent& e : trace.events) e.x = frame.apply_inverse(subspace->expand(e.x));
+        trace = trace_branch_in_subspace(family, *subspace, start_x, start_phi, start_direction,
+                                         start_direction_parameter, segment_fixed, segment_options,
+                                         on_segment_sample, on_special, events, on_event);
       } else {
         trace = trace_branch_along(family, start_x, start_phi, start_direction,
                                    start_direction_parameter, segment_fixed, segment_options,

@@ -206,15 +206,28 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
   return motion;
 }
 
-SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance) {
+SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int>& axes,
+                                  double tolerance) {
+  if (axes.empty()) throw std::invalid_argument("mirror_subspace: no mirror axes");
+  for (std::size_t k = 0; k < axes.size(); ++k)
+    for (std::size_t l = 0; l < k; ++l)
+      if (axes[k] == axes[l])
+        throw std::invalid_argument("mirror_subspace: axis " + std::to_string(axes[k]) +
+                                    " given twice");
   const Eigen::VectorXd& X = model.reference_positions();
   const Eigen::Index nv = X.size() / 3;
   const Eigen::MatrixX3d points =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), nv, 3);
-  std::vector<VertexSymmetry> mirrors{mirror_symmetry(points, 0, tolerance),
-                                      mirror_symmetry(points, 1, tolerance)};
-  for (const VertexSymmetry& m : mirrors) check_maps_faces_onto_faces(model.topology(), m);
+  std::vector<VertexSymmetry> mirrors;
+  for (const int axis : axes) {
+    mirrors.push_back(mirror_symmetry(points, axis, tolerance));
+    check_maps_faces_onto_faces(model.topology(), mirrors.back());
+  }
   return SymmetricSubspace(nv, mirrors);
+}
+
+SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance) {
+  return mirror_subspace(model, {0, 1}, tolerance);
 }
 
 }  // namespace growshell

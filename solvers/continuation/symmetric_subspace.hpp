@@ -67,6 +67,15 @@ class SymmetricSubspace {
   int group_order_ = 1;
 };
 
+/// The states of `model` (all control points, vertex-major) that are symmetric under the
+/// mirrors about the coordinate planes normal to `axes` (0 = x: x -> -x, 1 = y: y -> -y)
+/// through the origin: an n-fold cone with a fold on the x-axis has the mirror y -> -y, and
+/// for even n also x -> -x. Throws std::invalid_argument naming a vertex
+/// (find_vertex_symmetry) or a face (check_maps_faces_onto_faces) if the reference control
+/// mesh lacks a mirror within `tolerance` (m), and for an empty or repeated axis list.
+SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int>& axes,
+                                  double tolerance);
+
 /// The states of `model` (all control points, vertex-major) that are symmetric under both
 /// mirrors through the z-axis, x -> -x and y -> -y: the symmetric n = 2 e-cone of a disc
 /// centred at the origin with its folds on the mesh's mirror axes (as cone_branch_entry

@@ -1,0 +1,83 @@
+#include "solvers/continuation/subspace_branch_trace.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "solvers/continuation/symmetric_subspace_family.hpp"
+#include "solvers/stability/hessian_negative_count.hpp"
+
+namespace growshell {
+
+BranchTrace trace_branch_in_subspace(ParametrizedObjective& family,
+                                     const SymmetricSubspace& subspace,
+                                     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+                                     const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                                     double direction_parameter,
+                                     const std::vector<Eigen::Index>& fixed_dofs,
+                                     const ArclengthOptions& options,
+                                     const std::function<void(const BranchSample&)>& on_sample,
+                                     const std::function<void(const SpecialPoint&)>& on_special,
+                                     const std::vector<BranchEvent>& events,
+                                     const std::function<void(const LocatedEvent&)>& on_event) {
+  if (subspace.full_dimension() != family.dimension())
+    throw std::invalid_argument("trace_branch_in_subspace: the subspace is for " +
+                                std::to_string(subspace.full_dimension()) +
+                                " unknowns, the family has " + std::to_string(family.dimension()));
+  if (x0.size() != family.dimension() || direction_state.size() != family.dimension())
+    throw std::invalid_argument("trace_branch_in_subspace: x0 and direction_state need " +
+                                std::to_string(family.dimension()) + " entries");
+  const RigidMotion frame = subspace.aligning_motion(x0);
+  const auto state_to_caller = [&](const Eigen::VectorXd& y) {
+    return frame.apply_inverse(subspace.expand(y));
+  };
+  const auto to_caller = [&](BranchSample s) {
+    if (s.x.size() == subspace.dimension()) s.x = state_to_caller(s.x);
+    if (s.tangent_state.size() == subspace.dimension())
+      s.tangent_state = frame.rotate_inverse(subspace.expand(s.tangent_state));
+    return s;
+  };
+
+  SymmetricSubspaceFamily reduced(family, subspace);
+  const Eigen::VectorXd y0 = subspace.restrict_to(frame.apply(x0));
+  const std::vector<Eigen::Index> pins = subspace.rigid_motion_pins(subspace.expand(y0));
+  Eigen::VectorXd direction = subspace.restrict_to(frame.rotate(direction_state));
+  for (const Eigen::Index d : pins) direction(d) = 0.0;
+
+  HessianNegativeCount full_count(family, fixed_dofs);
+  ArclengthOptions o = options;
+  const auto free_full =
+      static_cast<double>(family.dimension() - static_cast<Eigen::Index>(fixed_dofs.size()));
+  const auto free_reduced =
+      static_cast<double>(subspace.dimension() - static_cast<Eigen::Index>(pins.size()));
+  o.state_weight = options.state_weight * free_reduced / free_full;
+  o.stability_index = [&](const BranchSample& s) {
+    BranchSample full;
+    full.parameter = s.parameter;
+    full.x = state_to_caller(s.x);
+    return options.stability_index ? options.stability_index(full) : full_count.at(full.x);
+  };
+  std::vector<BranchEvent> full_events = events;
+  for (BranchEvent& e : full_events)
+    e.value = [&, value = e.value](const BranchSample& s) { return value(to_caller(s)); };
+
+  BranchTrace trace = trace_branch_along(
+      reduced, y0, lambda0, direction, direction_parameter, pins, o,
+      [&](const BranchSample& s) {
+        if (on_sample) on_sample(to_caller(s));
+      },
+      [&](SpecialPoint sp) {
+        sp.x = state_to_caller(sp.x);
+        if (on_special) on_special(sp);
+      },
+      full_events,
+      [&](LocatedEvent e) {
+        e.x = state_to_caller(e.x);
+        if (on_event) on_event(e);
+      });
+  trace.last = to_caller(std::move(trace.last));
+  for (SpecialPoint& sp : trace.special_points) sp.x = state_to_caller(sp.x);
+  for (LocatedEvent& e : trace.events) e.x = state_to_caller(e.x);
+  return trace;
+}
+
+}  // namespace growshell

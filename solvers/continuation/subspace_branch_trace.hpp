@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// Pseudo-arclength continuation restricted to a symmetric subspace, with full states in and
+/// out: the branch through a symmetric equilibrium is followed among the symmetric states
+/// only (SymmetricSubspaceFamily), so it passes the branch points where it loses stability to
+/// symmetry-breaking modes however the steps fall, while its stability index stays the full
+/// Hessian's. Background: docs/continuation.md, "Symmetric subspace".
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "solvers/continuation/parametrized_objective.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/continuation/symmetric_subspace.hpp"
+
+namespace growshell {
+
+/// As trace_branch_along, for a start (x0, lambda0) that has the subspace's symmetry up to a
+/// rigid motion. The start is turned into the subspace's frame (aligning_motion) and projected;
+/// the trace runs on the restricted family with the subspace's rigid-motion pins and an
+/// arclength weight rescaled so that a step measures the same change of the full state. Every
+/// sample, special point and event (and the result's states) is handed back as a full state in
+/// the caller's frame; event test functions see such samples too. The samples' negative count
+/// is options.stability_index of the full sample if set, else the negative count of the full
+/// Hessian with `fixed_dofs` held (one more assembly and LDL^T per corrected point; cost in
+/// TraceCost::stability_*). Throws std::invalid_argument if the subspace is for another
+/// dimension, and as trace_branch_along and SymmetricSubspace::aligning_motion.
+BranchTrace trace_branch_in_subspace(
+    ParametrizedObjective& family, const SymmetricSubspace& subspace,
+    const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+    const Eigen::Ref<const Eigen::VectorXd>& direction_state, double direction_parameter,
+    const std::vector<Eigen::Index>& fixed_dofs, const ArclengthOptions& options,
+    const std::function<void(const BranchSample&)>& on_sample = {},
+    const std::function<void(const SpecialPoint&)>& on_special = {},
+    const std::vector<BranchEvent>& events = {},
+    const std::function<void(const LocatedEvent&)>& on_event = {});
+
+}  // namespace growshell
