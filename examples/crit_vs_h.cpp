@@ -199,8 +199,12 @@ int run(int argc, char** argv) {
     c.stiffness = stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
     c.violation_tolerance = 0.25 * h;
     c.repin_above_condition = 20.0;  // as trace_contact: pins chosen again where they degrade
-    c.symmetric_subspace =
-        examples::mirror_subspace_option(model, scene.geometry.radius, symmetric_subspace);
+    // The cone grown in natural steps (--phi-start) has its fold pattern turned against the
+    // mesh, so it is traced in the full space; the cone entered by continuation
+    // (--phi-contact-start) keeps the mirrors.
+    c.symmetric_subspace = examples::subspace_for_start(
+        examples::mirror_subspace_option(model, scene.geometry.radius, symmetric_subspace), start,
+        0.1 * h);
     c.arclength.initial_step = max_step / 4;
     c.arclength.max_step = max_step;
     c.arclength.min_step = 1e-6;

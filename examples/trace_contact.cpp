@@ -334,8 +334,10 @@ int run(int argc, char** argv) {
   branches.skewed_start = skew_from == "top" ? SkewedStart::Top : SkewedStart::BranchPoint;
   branches.skew_search_at = skew_at;
   branches.trace_skewed = skewed;
-  branches.contact.symmetric_subspace =
-      examples::mirror_subspace_option(model, R, symmetric_subspace);
+  // Starts further than h / 10 from symmetric (a grown fold pattern turned against the mesh)
+  // are traced in the full space.
+  branches.contact.symmetric_subspace = examples::subspace_for_start(
+      examples::mirror_subspace_option(model, R, symmetric_subspace), x, 0.1 * h);
   // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h.
   const ContactSolveOptions ipopt = examples::hard_contact_solve_options(
       model, h, options.contact_distance, options.exclusion_radius, options.candidate_margin,

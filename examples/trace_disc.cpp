@@ -153,7 +153,7 @@ int run(int argc, char** argv) {
   const auto pinned =
       mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
   ShellGrowthFamily family(model);
-  const std::shared_ptr<const SymmetricSubspace> subspace = examples::mirror_subspace_option(
+  std::shared_ptr<const SymmetricSubspace> subspace = examples::mirror_subspace_option(
       model, scene.geometry.radius, symmetric_subspace, scene.continuation.mode);
   // The cone branch, in the subspace if there is one (full states in and out either way).
   const auto trace_cone = [&](const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
@@ -341,6 +341,7 @@ int run(int argc, char** argv) {
                             ? (start.tangent_parameter > 0 ? -1.0 : 1.0)
                             : (start.tangent_parameter >= 0 ? 1.0 : -1.0);
     std::printf("# resuming from %s at phi_e = %.6f\n", resume.c_str(), start.parameter);
+    subspace = examples::subspace_for_start(subspace, start.x, 0.1 * h);
     trace = trace_cone(start.x, start.parameter, sign * start.tangent_state,
                        sign * start.tangent_parameter, options, on_sample, on_special, events,
                        on_event);

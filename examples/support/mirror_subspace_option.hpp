@@ -4,6 +4,7 @@
 // n), or none, with a note saying why, where the mesh lacks them (the annulus grid, a disc
 // centred off the origin).
 
+#include <Eigen/Core>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -25,6 +26,22 @@ inline std::shared_ptr<const SymmetricSubspace> mirror_subspace_option(const She
     std::printf("# the symmetric branch is traced in the full space: %s\n", e.what());
     return nullptr;
   }
+}
+
+/// `subspace` if the start state x has its symmetry up to `max_asymmetry` (m) in some frame,
+/// else none, with a note: e.g. a cone grown in natural steps, whose fold pattern has crept
+/// round against the mesh.
+inline std::shared_ptr<const SymmetricSubspace> subspace_for_start(
+    std::shared_ptr<const SymmetricSubspace> subspace, const Eigen::VectorXd& x,
+    double max_asymmetry) {
+  if (!subspace) return nullptr;
+  const double asymmetry = subspace->aligned_asymmetry(x);
+  if (asymmetry <= max_asymmetry) return subspace;
+  std::printf(
+      "# the symmetric branch is traced in the full space: its start is %.3g m off its mirror "
+      "image in every frame (more than %.3g m; e.g. a fold pattern turned against the mesh)\n",
+      asymmetry, max_asymmetry);
+  return nullptr;
 }
 
 }  // namespace growshell::examples

@@ -61,6 +61,14 @@ class SymmetricSubspace {
   /// mirrors share an axis, or x has the wrong size.
   RigidMotion aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
+  /// asymmetry(aligning_motion(x).apply(x)): how far x is from the subspace in any frame (m).
+  /// A start much further off than the corrector tolerance is not a symmetric state at all
+  /// (e.g. a fold pattern that has turned against the mesh), and projecting it gives no
+  /// equilibrium. Throws as aligning_motion.
+  double aligned_asymmetry(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    return asymmetry(aligning_motion(x).apply(x));
+  }
+
  private:
   std::vector<VertexSymmetry> generators_;
   Eigen::SparseMatrix<double> basis_;
