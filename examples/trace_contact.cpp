@@ -105,7 +105,8 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           states symmetric under both mirrors x -> -x, y -> -y (default 1: the
                           trace cannot turn onto the symmetry-breaking branches at the
                           symmetric branch's branch points; its stability index is still the
-                          full Hessian's; needs a mesh centred at the origin)
+                          full Hessian's; a mesh without the mirrors, e.g. a ring, or a start
+                          off them is traced in the full space, with a note)
   --out DIR               output directory (default out/contact)
 )";
 

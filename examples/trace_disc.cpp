@@ -62,7 +62,9 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --symmetric-subspace 1  trace the cone among the states with the mirrors of its folds (y -> -y,
                       and x -> -x for an even number of folds): the trace cannot turn onto a
                       branch that breaks them, e.g. at the symmetric cone's loss of stability;
-                      the stability index is still the full Hessian's (default 0; discs only)
+                      the stability index is still the full Hessian's (default 0; a mesh
+                      without the mirrors, e.g. a ring, or a resumed state off them is traced
+                      in the full space, with a note)
   --out DIR           output directory (default: the scene's output.directory)
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
