@@ -194,16 +194,9 @@ TEST(ContactBranch, InTheMirrorSubspaceTheSymmetricBranchKeepsItsMirrorsAndItsSt
   // The grown disc's fold pattern has crept round against the mesh (natural growth steps), so
   // its mirrors are not the mesh's: start from the cone entered by continuation instead, whose
   // folds lie on the mesh's mirror axes, cut back before first contact.
-  ContactFreeConeOptions cone_options;
-  cone_options.arclength.initial_step = 0.025;
-  cone_options.arclength.max_step = 0.1;
-  cone_options.arclength.min_step = 1e-4;
+  ContactFreeConeOptions cone_options = d.cone_options(0.5 * std::numbers::pi);
   cone_options.arclength.gradient_tolerance = 1e-7 * d.model.natural_force_scale();
   cone_options.arclength.parameter_max = 6.0;
-  cone_options.entry.thickness = kH;
-  cone_options.entry.radius = 1.0;
-  cone_options.contact_distance = kH;
-  cone_options.exclusion_radius = 0.5 * std::numbers::pi * kH;
   const ContactFreeCone cone = trace_contact_free_cone(d.model, d.proxy, d.pinned, cone_options);
   ASSERT_TRUE(cone.found) << cone.message;
   const double phi0 = cone.start.parameter;

@@ -19,23 +19,9 @@ namespace {
 using test_support::disc;
 using test_support::GrownDisc;
 
-ContactFreeConeOptions cone_options(const GrownDisc& d, double exclusion_factor) {
-  ContactFreeConeOptions o;
-  o.arclength.initial_step = 0.025;
-  o.arclength.max_step = 0.1;
-  o.arclength.min_step = 1e-4;
-  o.arclength.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
-  o.arclength.parameter_max = 6.6;
-  o.entry.thickness = GrownDisc::kH;
-  o.entry.radius = 1.0;
-  o.contact_distance = GrownDisc::kH;
-  o.exclusion_radius = exclusion_factor * GrownDisc::kH;
-  return o;
-}
-
 TEST(ContactFreeCone, StopsAtTheLastSampleFreeOfContact) {
   GrownDisc& d = disc();
-  const ContactFreeConeOptions o = cone_options(d, 0.5 * std::numbers::pi);
+  const ContactFreeConeOptions o = d.cone_options(0.5 * std::numbers::pi);
   const ContactFreeCone cone = trace_contact_free_cone(d.model, d.proxy, d.pinned, o);
   ASSERT_TRUE(cone.found) << cone.message;
   EXPECT_TRUE(cone.stopped_before_contact);
@@ -64,14 +50,14 @@ TEST(ContactFreeCone, StopsAtTheLastSampleFreeOfContact) {
 
   // Leaving the apex core out of the contact (8h) lets the contact-free cone go further.
   const ContactFreeCone wider =
-      trace_contact_free_cone(d.model, d.proxy, d.pinned, cone_options(d, 8.0));
+      trace_contact_free_cone(d.model, d.proxy, d.pinned, d.cone_options(8.0));
   ASSERT_TRUE(wider.found) << wider.message;
   EXPECT_GT(wider.start.parameter, cone.start.parameter);
 }
 
 TEST(ContactFreeCone, BadDistancesAreNamed) {
   GrownDisc& d = disc();
-  ContactFreeConeOptions o = cone_options(d, 2.0);
+  ContactFreeConeOptions o = d.cone_options(2.0);
   o.exclusion_radius = 0.5 * o.contact_distance;
   EXPECT_THROW(
       {

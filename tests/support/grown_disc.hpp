@@ -17,6 +17,7 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/contact/contact_free_cone.hpp"
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -86,6 +87,21 @@ struct GrownDisc {
     o.arclength.gradient_tolerance = 1e-7 * model.natural_force_scale();
     o.arclength.angle_test_max_step = 1e-3;
     o.arclength.max_tangent_angle = 0.5;
+    return o;
+  }
+  // trace_contact_free_cone on this disc: the cone entered from flat by continuation (folds
+  // on the mesh's mirror axes) up to 6.6, with the exclusion radius factor * h.
+  ContactFreeConeOptions cone_options(double exclusion_factor) const {
+    ContactFreeConeOptions o;
+    o.arclength.initial_step = 0.025;
+    o.arclength.max_step = 0.1;
+    o.arclength.min_step = 1e-4;
+    o.arclength.gradient_tolerance = 1e-6 * model.natural_force_scale();
+    o.arclength.parameter_max = 6.6;
+    o.entry.thickness = kH;
+    o.entry.radius = 1.0;
+    o.contact_distance = kH;
+    o.exclusion_radius = exclusion_factor * kH;
     return o;
   }
   // Ipopt on the same scene (contact distance, exclusion and margin as options(), lengths and
