@@ -57,9 +57,10 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
            static_cast<std::uint64_t>(std::max(p, q));
   };
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
-    // Corners (loop_basis.hpp): node 3 at (v, w) = (0, 0), node 6 at (1, 0), node 7 at (0, 1).
-    const int A = control[3], B = control[6], C = control[7];
+    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
+    // Corners: the face (a, b, c) at (v, w) = (0, 0), (1, 0), (0, 1) (loop_patch.hpp).
+    const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
+    const int A = f[0], B = f[1], C = f[2];
     // An edge's inner samples belong to the first element that reaches it.
     const bool new_ab = edge_taken.insert(edge_key(A, B)).second;
     const bool new_ac = edge_taken.insert(edge_key(A, C)).second;

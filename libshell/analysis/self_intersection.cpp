@@ -62,9 +62,10 @@ SampledSurface sample_surface(const ShellModel& model, const Eigen::Ref<const Ei
 
   std::vector<Eigen::Index> local(static_cast<std::size_t>((n + 1) * (n + 1)));
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
-    // Corners (loop_basis.hpp): node 3 at (v, w) = (0, 0), node 6 at (1, 0), node 7 at (0, 1).
-    const int A = control[3], B = control[6], C = control[7];
+    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
+    // Corners: the face (a, b, c) at (v, w) = (0, 0), (1, 0), (0, 1) (loop_patch.hpp).
+    const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
+    const int A = f[0], B = f[1], C = f[2];
     const auto vertex = [&](int v) {
       Eigen::Index& index = vertex_sample[static_cast<std::size_t>(v)];
       if (index < 0) index = reserve_samples(1);

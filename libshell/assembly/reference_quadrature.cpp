@@ -13,32 +13,46 @@ ThicknessField constant_thickness(double thickness) {
 }
 
 ReferenceQuadrature::ReferenceQuadrature(
-    const Eigen::Ref<const Eigen::MatrixX3d>& reference_positions,
-    const std::vector<std::array<int, 12>>& patches, int degree,
-    const ThicknessField& thickness)
+    const Eigen::Ref<const Eigen::MatrixX3d>& reference_positions, const ElementPatches& patches,
+    int degree, const ThicknessField& thickness)
     : rule_(triangle_quadrature(degree)) {
   if (!thickness) throw std::invalid_argument("thickness field is empty");
   for (const auto& point : rule_) {
-    basis_.push_back(evaluate_regular_loop_basis(point.v, point.w));
-    const LoopBasisValues& b = basis_.back();
-    Eigen::Matrix<double, 12, 5> B;
+    const LoopBasisValues b = evaluate_regular_loop_basis(point.v, point.w);
+    JetDerivatives<12> B;
     B << b.first, b.second;
-    Eigen::Matrix<double, 36, 15> map = Eigen::Matrix<double, 36, 15>::Zero();
-    for (int i = 0; i < 12; ++i)
-      for (int k = 0; k < 5; ++k)
-        for (int c = 0; c < 3; ++c) map(3 * i + c, 3 * k + c) = B(i, k);
-    jet_map_.push_back(map);
+    regular_.push_back(B);
+    regular_values_.push_back(b.value);
   }
-  const std::size_t n = patches.size() * rule_.size();
+  const std::size_t n_el = patches.patch.size();
+  irregular_slot_.assign(n_el, -1);
+  const std::size_t n = n_el * rule_.size();
   position_.reserve(n);
   tangents_.reserve(n);
   thickness_.reserve(n);
-  for (std::size_t e = 0; e < patches.size(); ++e) {
-    Eigen::Matrix<double, 12, 3> X;
-    for (int i = 0; i < 12; ++i) X.row(i) = reference_positions.row(patches[e][i]);
-    for (const LoopBasisValues& b : basis_) {
-      const Eigen::Vector3d p = X.transpose() * b.value;
-      Eigen::Matrix<double, 3, 2> A = X.transpose() * b.first;
+  int irregular_count = 0;
+  for (std::size_t e = 0; e < n_el; ++e) {
+    const LoopPatch& patch = patches.patch[e];
+    Eigen::MatrixX3d X(patch.size(), 3);
+    for (int i = 0; i < patch.size(); ++i)
+      X.row(i) = reference_positions.row(patch.control[static_cast<std::size_t>(i)]);
+    if (!patch.is_regular()) irregular_slot_[e] = irregular_count++;
+    for (std::size_t q = 0; q < rule_.size(); ++q) {
+      Eigen::VectorXd value;
+      Eigen::Matrix<double, Eigen::Dynamic, 2> first;
+      if (patch.is_regular()) {
+        value = regular_values_[q];
+        first = regular_[q].leftCols<2>();
+      } else {
+        const PatchBasis b = evaluate_patch_basis(patch, rule_[q].v, rule_[q].w);
+        JetDerivatives<Eigen::Dynamic> B(patch.size(), 5);
+        B << b.first, b.second;
+        irregular_.push_back(B);
+        value = b.value;
+        first = b.first;
+      }
+      const Eigen::Vector3d p = X.transpose() * value;
+      const Eigen::Matrix<double, 3, 2> A = X.transpose() * first;
       const double h = thickness(p);
       if (!(std::isfinite(h) && h > 0.0)) {
         std::ostringstream msg;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "libshell/subdivision/element_patches.hpp"
 #include "libshell/subdivision/loop_basis.hpp"
 #include "libshell/subdivision/triangle_quadrature.hpp"
 
@@ -17,28 +18,36 @@ using ThicknessField = std::function<double(const Eigen::Vector3d& reference_pos
 /// A thickness field equal to `thickness` everywhere.
 ThicknessField constant_thickness(double thickness);
 
+/// The 5 columns [dN/dv, dN/dw, d2N/dv2, d2N/dw2, d2N/dvdw] of a patch's basis functions at one
+/// point (one row per control point): the map from control points to the surface jet
+/// (a_1, a_2, a_11, a_22, a_12) = X^T B, with X the patch's control points as rows.
+template <int Nodes>
+using JetDerivatives = Eigen::Matrix<double, Nodes, 5>;
+
 /// Reference limit surface at the quadrature points: element e, rule point q is entry
 /// e * points_per_element() + q. Built once from the reference control points; the library
 /// never changes it afterwards.
 class ReferenceQuadrature {
  public:
   /// `reference_positions`: control points (one row per vertex, metres) of the stress-free
-  /// reference; `patches`: the 12 control points of each element; `degree`: exactness of
-  /// the triangle rule. Throws std::invalid_argument if the thickness is not finite and > 0
-  /// at some quadrature point (naming the element and position) or the reference surface is
-  /// degenerate there.
+  /// reference; `patches`: the elements' patches; `degree`: exactness of the triangle rule.
+  /// Throws std::invalid_argument if the thickness is not finite and > 0 at some quadrature
+  /// point (naming the element and position) or the reference surface is degenerate there.
   ReferenceQuadrature(const Eigen::Ref<const Eigen::MatrixX3d>& reference_positions,
-                      const std::vector<std::array<int, 12>>& patches, int degree,
-                      const ThicknessField& thickness);
+                      const ElementPatches& patches, int degree, const ThicknessField& thickness);
 
   int points_per_element() const { return static_cast<int>(rule_.size()); }
   const std::vector<TriangleQuadraturePoint>& rule() const { return rule_; }
-  /// Basis values at rule point q (shared by all elements: every patch is regular).
-  const LoopBasisValues& basis(int q) const { return basis_[q]; }
-  /// 36 x 15 map from the element's 36 control coordinates (node-major: 3 i + xyz) to the
-  /// 15-entry surface jet (a_1, a_2, a_11, a_22, a_12) at rule point q, transposed: jet =
-  /// jet_map(q)^T * x_local.
-  const Eigen::Matrix<double, 36, 15>& jet_map(int q) const { return jet_map_[q]; }
+  /// Jet derivatives at rule point q of every regular element (they share them).
+  const JetDerivatives<12>& regular_derivatives(int q) const { return regular_[static_cast<std::size_t>(q)]; }
+  /// True if element e is a regular 12-node patch.
+  bool is_regular(Eigen::Index e) const { return irregular_slot_[static_cast<std::size_t>(e)] < 0; }
+  /// Jet derivatives at rule point q of element e, which must have an extraordinary corner
+  /// (!is_regular(e)); one row per control point of its patch.
+  const JetDerivatives<Eigen::Dynamic>& irregular_derivatives(Eigen::Index e, int q) const {
+    return irregular_[static_cast<std::size_t>(irregular_slot_[static_cast<std::size_t>(e)] *
+                                                points_per_element() + q)];
+  }
 
   const Eigen::Vector3d& position(Eigen::Index i) const { return position_[i]; }
   /// Reference tangents [A_1 A_2] (metres per unit parameter).
@@ -52,8 +61,10 @@ class ReferenceQuadrature {
 
  private:
   std::vector<TriangleQuadraturePoint> rule_;
-  std::vector<LoopBasisValues> basis_;
-  std::vector<Eigen::Matrix<double, 36, 15>> jet_map_;
+  std::vector<JetDerivatives<12>> regular_;
+  std::vector<Eigen::VectorXd> regular_values_;
+  std::vector<int> irregular_slot_;  // per element: -1, or its index among irregular elements
+  std::vector<JetDerivatives<Eigen::Dynamic>> irregular_;
   std::vector<Eigen::Vector3d> position_;
   std::vector<Eigen::Matrix<double, 3, 2>> tangents_;
   std::vector<double> thickness_;

@@ -11,6 +11,7 @@
 #include "libshell/assembly/upper_block_pattern.hpp"
 #include "libshell/energy/shell_energy_density.hpp"
 #include "libshell/mesh/mesh_validation.hpp"
+#include "libshell/subdivision/loop_rules.hpp"
 
 namespace growshell {
 namespace {
@@ -28,34 +29,197 @@ Eigen::VectorXd flatten(const Eigen::MatrixX3d& positions) {
   return x;
 }
 
-SurfaceJet make_jet(const Eigen::Matrix<double, 15, 1>& s) {
-  return {s.segment<3>(kJetA1), s.segment<3>(kJetA2), s.segment<3>(kJetA11),
-          s.segment<3>(kJetA22), s.segment<3>(kJetA12)};
+constexpr int dofs_of(int nodes) { return nodes == Eigen::Dynamic ? Eigen::Dynamic : 3 * nodes; }
+template <int Nodes>
+using ElementMatrix = Eigen::Matrix<double, dofs_of(Nodes), dofs_of(Nodes)>;
+
+/// The patch's control points of element `patch` as rows (node i = patch.control[i]).
+template <int Nodes>
+Eigen::Matrix<double, Nodes, 3> element_nodes(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const LoopPatch& patch) {
+  Eigen::Matrix<double, Nodes, 3> X(patch.size(), 3);
+  for (int i = 0; i < patch.size(); ++i)
+    X.row(i) = x.segment<3>(3 * patch.control[static_cast<std::size_t>(i)]).transpose();
+  return X;
 }
 
-/// H_local += J H_jet J^T for a jet map of the form J = kron(B, I3), J(3 i + c, 3 k + c) =
-/// B(i, k), with B (12 x 5) the basis derivatives. Entry (3 a + c, 3 b + d) of J H_jet J^T is
-/// (B H_cd B^T)(a, b) with H_cd(k, l) = H_jet(3 k + c, 3 l + d); since H_jet is symmetric,
-/// H_dc = H_cd^T and only the six products with c <= d are formed: about a quarter of the
-/// flops of the dense 36x15 products (the dominant cost of Hessian assembly).
-void add_jet_congruence(const Eigen::Matrix<double, 12, 5>& B, const JetMatrix& H_jet,
-                        Eigen::Matrix<double, 36, 36>& H_local) {
+/// The surface jet (a_1, a_2, a_11, a_22, a_12) = X^T B.
+template <int Nodes>
+SurfaceJet surface_jet(const JetDerivatives<Nodes>& B, const Eigen::Matrix<double, Nodes, 3>& X) {
+  const Eigen::Matrix<double, 3, 5> J = X.transpose() * B;
+  return {J.col(0), J.col(1), J.col(2), J.col(3), J.col(4)};
+}
+
+/// Node forces of a jet gradient: G(i, c) = sum_k B(i, k) g_jet(3 k + c).
+template <int Nodes>
+void add_node_forces(const JetDerivatives<Nodes>& B, const JetVector& g_jet,
+                     Eigen::Matrix<double, Nodes, 3>& G) {
+  G.noalias() += B * Eigen::Map<const Eigen::Matrix<double, 3, 5>>(g_jet.data()).transpose();
+}
+
+/// H_local += J H_jet J^T for the jet map J = kron(B, I3), J(3 i + c, 3 k + c) = B(i, k), with B
+/// (n x 5) the basis derivatives and H_local (3n x 3n) in node-major order 3 i + c. Entry
+/// (3 a + c, 3 b + d) of J H_jet J^T is (B H_cd B^T)(a, b) with H_cd(k, l) = H_jet(3 k + c,
+/// 3 l + d); since H_jet is symmetric, H_dc = H_cd^T and only the six products with c <= d are
+/// formed: about a quarter of the flops of the dense products (the dominant cost of Hessian
+/// assembly).
+template <int Nodes>
+void add_jet_congruence(const JetDerivatives<Nodes>& B, const JetMatrix& H_jet,
+                        ElementMatrix<Nodes>& H_local) {
+  constexpr int Dofs = dofs_of(Nodes);
+  const Eigen::Index n = B.rows();
   // Strided views of the (c, d) component blocks of the jet and element matrices.
   using JetComponents =
       Eigen::Map<const Eigen::Matrix<double, 5, 5>, Eigen::Unaligned, Eigen::Stride<3 * 15, 3>>;
   using ElementComponents =
-      Eigen::Map<Eigen::Matrix<double, 12, 12>, Eigen::Unaligned, Eigen::Stride<3 * 36, 3>>;
+      Eigen::Map<Eigen::Matrix<double, Nodes, Nodes>, Eigen::Unaligned,
+                 Eigen::Stride<Dofs == Eigen::Dynamic ? Eigen::Dynamic : 3 * Dofs, 3>>;
+  const Eigen::Stride<Dofs == Eigen::Dynamic ? Eigen::Dynamic : 3 * Dofs, 3> stride(3 * 3 * n, 3);
   for (int d = 0; d < 3; ++d) {
     for (int c = 0; c <= d; ++c) {
       // lazyProduct: Eigen would send these small fixed-size products through its blocked
       // GEMM kernel, whose packing costs more than the arithmetic here.
-      const Eigen::Matrix<double, 12, 5> BH =
+      const Eigen::Matrix<double, Nodes, 5> BH =
           B.lazyProduct(JetComponents(H_jet.data() + c + 15 * d));
-      const Eigen::Matrix<double, 12, 12> block = BH.lazyProduct(B.transpose());
-      ElementComponents(H_local.data() + c + 36 * d) += block;
-      if (c != d) ElementComponents(H_local.data() + d + 36 * c) += block.transpose();
+      const Eigen::Matrix<double, Nodes, Nodes> block = BH.lazyProduct(B.transpose());
+      ElementComponents(H_local.data() + c + 3 * n * d, n, n, stride) += block;
+      if (c != d) ElementComponents(H_local.data() + d + 3 * n * c, n, n, stride) += block.transpose();
     }
   }
+}
+
+template <int Nodes>
+const JetDerivatives<Nodes>& jet_derivatives(const ReferenceQuadrature& reference, Eigen::Index e,
+                                             int q);
+template <>
+const JetDerivatives<12>& jet_derivatives<12>(const ReferenceQuadrature& reference, Eigen::Index,
+                                              int q) {
+  return reference.regular_derivatives(q);
+}
+template <>
+const JetDerivatives<Eigen::Dynamic>& jet_derivatives<Eigen::Dynamic>(
+    const ReferenceQuadrature& reference, Eigen::Index e, int q) {
+  return reference.irregular_derivatives(e, q);
+}
+
+/// What evaluate() asks of one element.
+enum class Order { Energy, Gradient, Hessian };
+
+/// Energy of element e at x and, as `order` asks, its node forces G (n x 3) and Hessian H (3n x
+/// 3n, node-major), both overwritten. Nodes = 12 for a regular element, Dynamic otherwise.
+template <int Nodes>
+double element_terms(const ReferenceQuadrature& reference,
+                     const std::vector<Eigen::Matrix2d>& target_metric, const Material& material,
+                     const LoopPatch& patch, Eigen::Index e,
+                     const Eigen::Ref<const Eigen::VectorXd>& x, Order order,
+                     Eigen::Matrix<double, Nodes, 3>& G, ElementMatrix<Nodes>& H) {
+  const int m = reference.points_per_element();
+  const Eigen::Matrix<double, Nodes, 3> X = element_nodes<Nodes>(x, patch);
+  if (order != Order::Energy) G.setZero(patch.size(), 3);
+  if (order == Order::Hessian) H.setZero(3 * patch.size(), 3 * patch.size());
+  JetVector g_jet;
+  JetMatrix H_jet;
+  double energy = 0.0;
+  for (int q = 0; q < m; ++q) {
+    const Eigen::Index i = e * m + q;
+    const JetDerivatives<Nodes>& B = jet_derivatives<Nodes>(reference, e, q);
+    const SurfaceJet jet = surface_jet<Nodes>(B, X);
+    const ShellPointRest rest{target_metric[static_cast<std::size_t>(i)], reference.rule()[q].weight,
+                              reference.thickness(i)};
+    if (order == Order::Hessian) {
+      energy += shell_point_hessian(jet, rest, material, g_jet, H_jet);
+      add_node_forces<Nodes>(B, g_jet, G);
+      add_jet_congruence<Nodes>(B, H_jet, H);
+    } else if (order == Order::Gradient) {
+      energy += shell_point_gradient(jet, rest, material, g_jet);
+      add_node_forces<Nodes>(B, g_jet, G);
+    } else {
+      energy += shell_point_energy(jet, rest, material).total();
+    }
+  }
+  return energy;
+}
+
+/// Adds element forces G (n x 3) to the global vector g at the patch's vertices.
+template <int Nodes>
+void scatter_forces(const LoopPatch& patch, const Eigen::Matrix<double, Nodes, 3>& G,
+                    Eigen::VectorXd& g) {
+  for (int a = 0; a < patch.size(); ++a)
+    g.segment<3>(3 * patch.control[static_cast<std::size_t>(a)]) += G.row(a).transpose();
+}
+
+/// Adds the upper triangle of the element Hessian H to the values of the upper pattern.
+template <int Nodes>
+void scatter_hessian(const LoopPatch& patch, const ElementMatrix<Nodes>& H,
+                     const Eigen::SparseMatrix<double>& pattern, double* values) {
+  const int n = patch.size();
+  for (int a = 0; a < n; ++a) {
+    for (int b = 0; b < n; ++b) {
+      const int ga = patch.control[static_cast<std::size_t>(a)];
+      const int gb = patch.control[static_cast<std::size_t>(b)];
+      if (ga > gb) continue;
+      for (int c = 0; c < 3; ++c) {  // column 3 gb + c
+        const Eigen::Index k = upper_entry_index(pattern, 3 * ga, 3 * gb + c);
+        const int rows = (ga == gb) ? c + 1 : 3;
+        for (int r = 0; r < rows; ++r) values[k + r] += H(3 * a + r, 3 * b + c);
+      }
+    }
+  }
+}
+
+/// Energy parts of element e (see ShellModel::element_breakdown).
+template <int Nodes>
+ShellEnergyBreakdown element_parts(const ReferenceQuadrature& reference,
+                                   const std::vector<Eigen::Matrix2d>& target_metric,
+                                   const Material& material, const LoopPatch& patch,
+                                   Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  ShellEnergyBreakdown out;
+  const int m = reference.points_per_element();
+  const Eigen::Matrix<double, Nodes, 3> X = element_nodes<Nodes>(x, patch);
+  for (int q = 0; q < m; ++q) {
+    const Eigen::Index i = e * m + q;
+    const SurfaceJet jet = surface_jet<Nodes>(jet_derivatives<Nodes>(reference, e, q), X);
+    const Eigen::Matrix2d& abar = target_metric[static_cast<std::size_t>(i)];
+    const ShellPointRest rest{abar, reference.rule()[q].weight, reference.thickness(i)};
+    const ShellPointEnergy p = shell_point_energy(jet, rest, material);
+    out.stretching += p.stretching;
+    out.bending += p.bending;
+    out.bending_density_integral += p.bending_density_integral;
+    out.stretching_density_integral += p.stretching / stretching_modulus(material, rest.thickness);
+    out.current_area += p.current_area;
+    out.grown_area += rest.weight * std::sqrt(abar.determinant());
+  }
+  return out;
+}
+
+/// d(gradient)/d(phi_e) of element e as node forces (n x 3).
+template <int Nodes>
+Eigen::Matrix<double, Nodes, 3> element_force_parameter_derivative(
+    const ReferenceQuadrature& reference, const std::vector<Eigen::Matrix2d>& target_metric,
+    const ShellModelSettings& settings, double excess_angle, const LoopPatch& patch,
+    Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  const int m = reference.points_per_element();
+  const Eigen::Matrix<double, Nodes, 3> X = element_nodes<Nodes>(x, patch);
+  Eigen::Matrix<double, Nodes, 3> G = Eigen::Matrix<double, Nodes, 3>::Zero(patch.size(), 3);
+  for (int q = 0; q < m; ++q) {
+    const Eigen::Index i = e * m + q;
+    const JetDerivatives<Nodes>& B = jet_derivatives<Nodes>(reference, e, q);
+    const SurfaceJet jet = surface_jet<Nodes>(B, X);
+    const ShellPointRest rest{target_metric[static_cast<std::size_t>(i)], reference.rule()[q].weight,
+                              reference.thickness(i)};
+    const Eigen::Matrix2d dabar = target_metric_excess_angle_derivative(
+        settings.growth, reference.position(i), reference.tangents(i), excess_angle);
+    add_node_forces<Nodes>(
+        B, shell_point_gradient_parameter_derivative(jet, rest, settings.material, dabar), G);
+  }
+  return G;
+}
+
+std::vector<std::vector<int>> patch_controls(const ElementPatches& patches) {
+  std::vector<std::vector<int>> out;
+  out.reserve(patches.patch.size());
+  for (const LoopPatch& p : patches.patch) out.push_back(p.control);
+  return out;
 }
 
 }  // namespace
@@ -65,14 +229,14 @@ ShellModel::ShellModel(const TriangleMesh& reference_control_mesh, ShellModelSet
       topology_(validated(reference_control_mesh, settings_)),
       patches_(build_element_patches(topology_)),
       reference_x_(flatten(reference_control_mesh.vertices)),
-      reference_(reference_control_mesh.vertices, patches_.control, settings_.quadrature_degree,
+      reference_(reference_control_mesh.vertices, patches_, settings_.quadrature_degree,
                  settings_.thickness) {
   std::vector<char> is_corner(topology_.num_vertices(), 0);
   for (int f : patches_.face)
     for (int v : topology_.face(f)) is_corner[v] = 1;
   for (int v = 0; v < topology_.num_vertices(); ++v)
     if (is_corner[v]) sheet_vertices_.push_back(v);
-  pattern_ = upper_block_pattern(topology_.num_vertices(), patches_.control);
+  pattern_ = upper_block_pattern(topology_.num_vertices(), patch_controls(patches_));
   set_excess_angle(0.0);
 }
 
@@ -90,13 +254,6 @@ int ShellModel::thread_count() const {
   return settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
 }
 
-Eigen::Matrix<double, 36, 1> ShellModel::element_coordinates(
-    const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index e) const {
-  Eigen::Matrix<double, 36, 1> local;
-  for (int i = 0; i < 12; ++i) local.segment<3>(3 * i) = x.segment<3>(3 * patches_.control[e][i]);
-  return local;
-}
-
 double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
                             Eigen::VectorXd* gradient,
                             Eigen::SparseMatrix<double>* hessian_upper) {
@@ -107,7 +264,6 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
     throw std::invalid_argument("ShellModel::evaluate: Hessian does not carry the model's pattern");
   const int threads = thread_count();
   const Eigen::Index n_el = num_elements();
-  const int m = reference_.points_per_element();
   if (gradient) {
     thread_gradient_.resize(threads);
     for (auto& g : thread_gradient_) g.setZero(dimension());
@@ -116,60 +272,31 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
     thread_values_.resize(threads);
     for (auto& h : thread_values_) h.setZero(pattern_.nonZeros());
   }
+  const Order order = hessian_upper ? Order::Hessian : gradient ? Order::Gradient : Order::Energy;
   std::vector<double> thread_energy(threads, 0.0);
-  // The jet maps are kron(B, I3); the Hessian path works with B alone (add_jet_congruence).
-  std::vector<Eigen::Matrix<double, 12, 5>> basis_derivatives(m);
-  for (int q = 0; q < m; ++q)
-    basis_derivatives[q] << reference_.basis(q).first, reference_.basis(q).second;
 
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
     double energy = 0.0;
-    Eigen::Matrix<double, 36, 1> g_local;
-    Eigen::Matrix<double, 36, 36> H_local;
-    JetVector g_jet;
-    JetMatrix H_jet;
+    Eigen::Matrix<double, 12, 3> G12;
+    ElementMatrix<12> H12;
+    Eigen::MatrixX3d G;
+    Eigen::MatrixXd H;
 #pragma omp for schedule(static)
     for (Eigen::Index e = 0; e < n_el; ++e) {
-      const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-      g_local.setZero();
-      H_local.setZero();
-      for (int q = 0; q < m; ++q) {
-        const Eigen::Index i = e * m + q;
-        const auto& J = reference_.jet_map(q);
-        const SurfaceJet jet = make_jet(J.transpose() * xe);
-        const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                                  reference_.thickness(i)};
-        if (hessian_upper) {
-          energy += shell_point_hessian(jet, rest, settings_.material, g_jet, H_jet);
-          g_local.noalias() += J * g_jet;
-          add_jet_congruence(basis_derivatives[q], H_jet, H_local);
-        } else if (gradient) {
-          energy += shell_point_gradient(jet, rest, settings_.material, g_jet);
-          g_local.noalias() += J * g_jet;
-        } else {
-          energy += shell_point_energy(jet, rest, settings_.material).total();
-        }
-      }
-      const auto& patch = patches_.control[e];
-      if (gradient) {
-        Eigen::VectorXd& g = thread_gradient_[t];
-        for (int a = 0; a < 12; ++a) g.segment<3>(3 * patch[a]) += g_local.segment<3>(3 * a);
-      }
-      if (hessian_upper) {
-        double* values = thread_values_[t].data();
-        for (int a = 0; a < 12; ++a) {
-          for (int b = 0; b < 12; ++b) {
-            const int ga = patch[a], gb = patch[b];
-            if (ga > gb) continue;
-            for (int c = 0; c < 3; ++c) {  // column 3 gb + c
-              const Eigen::Index k = upper_entry_index(pattern_, 3 * ga, 3 * gb + c);
-              const int rows = (ga == gb) ? c + 1 : 3;
-              for (int r = 0; r < rows; ++r) values[k + r] += H_local(3 * a + r, 3 * b + c);
-            }
-          }
-        }
+      const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
+      if (reference_.is_regular(e)) {
+        energy += element_terms<12>(reference_, target_metric_, settings_.material, patch, e, x,
+                                    order, G12, H12);
+        if (gradient) scatter_forces<12>(patch, G12, thread_gradient_[t]);
+        if (hessian_upper) scatter_hessian<12>(patch, H12, pattern_, thread_values_[t].data());
+      } else {
+        energy += element_terms<Eigen::Dynamic>(reference_, target_metric_, settings_.material,
+                                                patch, e, x, order, G, H);
+        if (gradient) scatter_forces<Eigen::Dynamic>(patch, G, thread_gradient_[t]);
+        if (hessian_upper)
+          scatter_hessian<Eigen::Dynamic>(patch, H, pattern_, thread_values_[t].data());
       }
     }
     thread_energy[t] = energy;
@@ -191,24 +318,11 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 ShellEnergyBreakdown ShellModel::element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                   Eigen::Index e) const {
-  ShellEnergyBreakdown out;
-  const int m = reference_.points_per_element();
-  const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-  for (int q = 0; q < m; ++q) {
-    const Eigen::Index i = e * m + q;
-    const SurfaceJet jet = make_jet(reference_.jet_map(q).transpose() * xe);
-    const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                              reference_.thickness(i)};
-    const ShellPointEnergy p = shell_point_energy(jet, rest, settings_.material);
-    out.stretching += p.stretching;
-    out.bending += p.bending;
-    out.bending_density_integral += p.bending_density_integral;
-    out.stretching_density_integral +=
-        p.stretching / stretching_modulus(settings_.material, rest.thickness);
-    out.current_area += p.current_area;
-    out.grown_area += rest.weight * std::sqrt(target_metric_[i].determinant());
-  }
-  return out;
+  const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
+  return reference_.is_regular(e)
+             ? element_parts<12>(reference_, target_metric_, settings_.material, patch, e, x)
+             : element_parts<Eigen::Dynamic>(reference_, target_metric_, settings_.material,
+                                             patch, e, x);
 }
 
 ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -228,23 +342,19 @@ ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::
 Eigen::VectorXd ShellModel::gradient_excess_angle_derivative(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(dimension());
-  const int m = reference_.points_per_element();
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const Eigen::Matrix<double, 36, 1> xe = element_coordinates(x, e);
-    Eigen::Matrix<double, 36, 1> local = Eigen::Matrix<double, 36, 1>::Zero();
-    for (int q = 0; q < m; ++q) {
-      const Eigen::Index i = e * m + q;
-      const auto& J = reference_.jet_map(q);
-      const SurfaceJet jet = make_jet(J.transpose() * xe);
-      const ShellPointRest rest{target_metric_[i], reference_.rule()[q].weight,
-                                reference_.thickness(i)};
-      const Eigen::Matrix2d dabar = target_metric_excess_angle_derivative(
-          settings_.growth, reference_.position(i), reference_.tangents(i), excess_angle_);
-      local.noalias() +=
-          J * shell_point_gradient_parameter_derivative(jet, rest, settings_.material, dabar);
-    }
-    for (int a = 0; a < 12; ++a)
-      out.segment<3>(3 * patches_.control[e][a]) += local.segment<3>(3 * a);
+    const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
+    if (reference_.is_regular(e))
+      scatter_forces<12>(patch,
+                         element_force_parameter_derivative<12>(
+                             reference_, target_metric_, settings_, excess_angle_, patch, e, x),
+                         out);
+    else
+      scatter_forces<Eigen::Dynamic>(
+          patch,
+          element_force_parameter_derivative<Eigen::Dynamic>(reference_, target_metric_,
+                                                             settings_, excess_angle_, patch, e, x),
+          out);
   }
   return out;
 }
@@ -272,8 +382,10 @@ Eigen::MatrixX3d ShellModel::limit_positions(const Eigen::Ref<const Eigen::Vecto
   Eigen::MatrixX3d out(sheet_vertices_.size(), 3);
   for (std::size_t k = 0; k < sheet_vertices_.size(); ++k) {
     const int v = sheet_vertices_[k];
-    Eigen::Vector3d p = kRegularLimitCentreWeight * x.segment<3>(3 * v);
-    for (int u : topology_.one_ring(v)) p += kRegularLimitNeighbourWeight * x.segment<3>(3 * u);
+    const auto& ring = topology_.one_ring(v);
+    const double chi = loop_limit_neighbour_weight(static_cast<int>(ring.size()));
+    Eigen::Vector3d p = (1.0 - chi * static_cast<double>(ring.size())) * x.segment<3>(3 * v);
+    for (int u : ring) p += chi * x.segment<3>(3 * u);
     out.row(static_cast<Eigen::Index>(k)) = p;
   }
   return out;

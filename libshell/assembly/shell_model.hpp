@@ -97,9 +97,6 @@ class ShellModel final : public SparseObjective {
   double natural_force_scale() const;
 
  private:
-  /// Coordinates of the 12 control points of element e, node-major (3 i + c).
-  Eigen::Matrix<double, 36, 1> element_coordinates(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                   Eigen::Index e) const;
   int thread_count() const;
 
   ShellModelSettings settings_;

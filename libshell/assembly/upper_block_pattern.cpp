@@ -5,7 +5,7 @@
 namespace growshell {
 
 Eigen::SparseMatrix<double> upper_block_pattern(int num_vertices,
-                                                const std::vector<std::array<int, 12>>& patches) {
+                                                const std::vector<std::vector<int>>& patches) {
   // Vertex-level upper adjacency: for each column vertex, the row vertices <= it.
   std::vector<std::vector<int>> rows_of(num_vertices);
   for (const auto& patch : patches)

@@ -13,8 +13,9 @@ namespace growshell {
 /// Upper-triangular (row <= column) column-major pattern with one dense 3x3 block for every
 /// pair of vertices that share an element patch (the diagonal blocks keep their upper half).
 /// Degree of freedom of vertex v, component c: 3 v + c. Values are zero.
+/// `patches` holds each element's control vertices.
 Eigen::SparseMatrix<double> upper_block_pattern(int num_vertices,
-                                                const std::vector<std::array<int, 12>>& patches);
+                                                const std::vector<std::vector<int>>& patches);
 
 /// Index into matrix.valuePtr() of entry (row, col), row <= col, which must be in the pattern
 /// (binary search in column `col`). Used by the assembly to scatter element blocks.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libshell/subdivision/loop_basis.hpp"
+#include "libshell/subdivision/loop_patch.hpp"
 
 namespace growshell {
 namespace {
@@ -30,8 +31,11 @@ struct Corners {
   int a, b, c;  // at (v, w) = (0, 0), (1, 0), (0, 1)
 };
 
-Corners element_corners(const std::array<int, 12>& control) {
-  return {control[3], control[6], control[7]};
+Corners element_corners(const LoopPatch& patch) {
+  const auto corner = [&](int k) {
+    return patch.control[static_cast<std::size_t>(patch.corners[static_cast<std::size_t>(k)])];
+  };
+  return {corner(0), corner(1), corner(2)};
 }
 
 void check_segments(int segments_per_edge) {
@@ -51,13 +55,15 @@ ContactProxy make_contact_proxy(const ShellModel& model, int segments_per_edge) 
   const int num_mesh_vertices = static_cast<int>(model.dimension() / 3);
   const auto num_elements = static_cast<int>(model.num_elements());
 
-  // Basis weights of every lattice point are the same for all (regular) elements.
+  // Basis weights of every lattice point are the same for all regular elements; an element
+  // with an extraordinary corner has its own.
   const int lattice = lattice_size(n);
-  std::vector<Eigen::Matrix<double, 12, 1>> weights(static_cast<std::size_t>(lattice));
+  std::vector<Eigen::VectorXd> regular_weights(static_cast<std::size_t>(lattice));
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= n - i; ++j)
-      weights[static_cast<std::size_t>(lattice_index(n, i, j))] =
+      regular_weights[static_cast<std::size_t>(lattice_index(n, i, j))] =
           evaluate_regular_loop_basis(static_cast<double>(i) / n, static_cast<double>(j) / n).value;
+  std::vector<Eigen::VectorXd> irregular_weights(static_cast<std::size_t>(lattice));
 
   ContactProxy proxy;
   proxy.segments_per_edge = n;
@@ -80,8 +86,16 @@ ContactProxy make_contact_proxy(const ShellModel& model, int segments_per_edge) 
   std::vector<int> local(static_cast<std::size_t>(lattice));
   Eigen::Index triangle = 0;
   for (int e = 0; e < num_elements; ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
-    const Corners k = element_corners(control);
+    const LoopPatch& patch = model.patches().patch[static_cast<std::size_t>(e)];
+    const auto& control = patch.control;
+    const Corners k = element_corners(patch);
+    if (!patch.is_regular())
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n - i; ++j)
+          irregular_weights[static_cast<std::size_t>(lattice_index(n, i, j))] =
+              evaluate_patch_basis(patch, static_cast<double>(i) / n, static_cast<double>(j) / n)
+                  .value;
+    const auto& weights = patch.is_regular() ? regular_weights : irregular_weights;
     // The slot of an edge point reached s steps from corner p along the edge p-q.
     const auto edge_slot = [&](int p, int q, int s) -> int& {
       const auto lo = static_cast<std::uint64_t>(std::min(p, q)),
@@ -112,7 +126,7 @@ ContactProxy make_contact_proxy(const ShellModel& model, int segments_per_edge) 
           element_of.push_back(e);
           parameter_of.emplace_back(static_cast<double>(i) / n, static_cast<double>(j) / n);
           const auto& N = weights[static_cast<std::size_t>(lattice_index(n, i, j))];
-          for (int node = 0; node < 12; ++node) {
+          for (int node = 0; node < patch.size(); ++node) {
             // Some basis functions vanish exactly on the element's boundary (e.g. at corners);
             // dropping them keeps the map's pattern as small as the surface's true support.
             if (N(node) == 0.0) continue;
@@ -197,38 +211,48 @@ ProxySag proxy_sag(const ShellModel& model, const ContactProxy& proxy,
     throw std::invalid_argument(msg.str());
   }
   // Check points: every sub-edge midpoint and sub-triangle centroid. The offset y - x there is
-  // X^T (mean of N(corners) - N(check)): one 12-vector of weights per check point, shared by
-  // all (regular) elements, like the tangents X^T dN/dv, X^T dN/dw.
-  const auto N = [n](double i, double j) {
-    return evaluate_regular_loop_basis(i / n, j / n).value;
+  // X^T (mean of N(corners) - N(check)): one weight vector per check point, shared by all
+  // regular elements (an element with an extraordinary corner has its own), like the tangents
+  // X^T dN/dv, X^T dN/dw.
+  struct CheckWeights {
+    std::vector<Eigen::VectorXd> offset;
+    std::vector<Eigen::MatrixX2d> first;
   };
-  std::vector<Eigen::Matrix<double, 12, 1>> offset;
-  std::vector<Eigen::Matrix<double, 12, 2>> first;
-  const auto add = [&](double i, double j, const Eigen::Matrix<double, 12, 1>& interpolated) {
-    const LoopBasisValues b = evaluate_regular_loop_basis(i / n, j / n);
-    offset.push_back(interpolated - b.value);
-    first.push_back(b.first);
-  };
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n - i; ++j) {
-      const Eigen::Matrix<double, 12, 1> a = N(i, j), b = N(i + 1, j), c = N(i, j + 1);
-      add(i + 0.5, j, 0.5 * (a + b));
-      add(i, j + 0.5, 0.5 * (a + c));
-      add(i + 0.5, j + 0.5, 0.5 * (b + c));
-      add(i + 1.0 / 3.0, j + 1.0 / 3.0, (a + b + c) / 3.0);
-      if (i + j < n - 1) add(i + 2.0 / 3.0, j + 2.0 / 3.0, (b + N(i + 1, j + 1) + c) / 3.0);
+  const auto check_weights = [n](const LoopPatch& patch) {
+    CheckWeights w;
+    const auto N = [&](double i, double j) { return evaluate_patch_basis(patch, i / n, j / n).value; };
+    const auto add = [&](double i, double j, const Eigen::VectorXd& interpolated) {
+      const PatchBasis b = evaluate_patch_basis(patch, i / n, j / n);
+      w.offset.push_back(interpolated - b.value);
+      w.first.push_back(b.first);
+    };
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n - i; ++j) {
+        const Eigen::VectorXd a = N(i, j), b = N(i + 1, j), c = N(i, j + 1);
+        add(i + 0.5, j, 0.5 * (a + b));
+        add(i, j + 0.5, 0.5 * (a + c));
+        add(i + 0.5, j + 0.5, 0.5 * (b + c));
+        add(i + 1.0 / 3.0, j + 1.0 / 3.0, (a + b + c) / 3.0);
+        if (i + j < n - 1) add(i + 2.0 / 3.0, j + 2.0 / 3.0, (b + N(i + 1, j + 1) + c) / 3.0);
+      }
     }
-  }
+    return w;
+  };
+  LoopPatch regular;
+  regular.control.assign(12, 0);
+  const CheckWeights regular_weights = check_weights(regular);
 
   ProxySag sag;
-  Eigen::Matrix<double, 12, 3> X;
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
-    for (int node = 0; node < 12; ++node)
-      X.row(node) = x.segment<3>(3 * control[static_cast<std::size_t>(node)]).transpose();
-    for (std::size_t k = 0; k < offset.size(); ++k) {
-      const Eigen::Vector3d delta = X.transpose() * offset[k];
-      const Eigen::Matrix<double, 3, 2> tangents = X.transpose() * first[k];
+    const LoopPatch& patch = model.patches().patch[static_cast<std::size_t>(e)];
+    const CheckWeights irregular_weights = patch.is_regular() ? CheckWeights{} : check_weights(patch);
+    const CheckWeights& w = patch.is_regular() ? regular_weights : irregular_weights;
+    Eigen::MatrixX3d X(patch.size(), 3);
+    for (int node = 0; node < patch.size(); ++node)
+      X.row(node) = x.segment<3>(3 * patch.control[static_cast<std::size_t>(node)]).transpose();
+    for (std::size_t k = 0; k < w.offset.size(); ++k) {
+      const Eigen::Vector3d delta = X.transpose() * w.offset[k];
+      const Eigen::Matrix<double, 3, 2> tangents = X.transpose() * w.first[k];
       const Eigen::Vector3d normal = tangents.col(0).cross(tangents.col(1)).normalized();
       sag.normal = std::max(sag.normal, std::abs(normal.dot(delta)));
       sag.parametric = std::max(sag.parametric, delta.norm());

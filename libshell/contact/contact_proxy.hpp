@@ -22,8 +22,8 @@ namespace growshell {
 ///
 /// Construction (make_contact_proxy): every element e (in increasing order) is split into
 /// n^2 sub-triangles on the parameter lattice (v, w) = (i / n, j / n), i, j >= 0, i + j <= n,
-/// with n = segments_per_edge. Parameters as in loop_basis.hpp: (0, 0) is the element corner
-/// control[3], (1, 0) is control[6], (0, 1) is control[7]. Lattice points on element corners
+/// with n = segments_per_edge. Parameters as in loop_patch.hpp: (0, 0), (1, 0) and (0, 1) are the
+/// corners a, b, c of the element's face. Lattice points on element corners
 /// and edges are shared with the neighbouring elements and are created once (by the first
 /// element that reaches them), so the proxy is a conforming, consistently oriented triangle
 /// mesh with the same topology as the sheet. Counts for a sheet of V vertices, E edges and

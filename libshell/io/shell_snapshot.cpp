@@ -39,7 +39,7 @@ SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const E
       for (int j = 0; j <= r; ++j)
         for (int i = 0; i + j <= r; ++i)
           s.points.row(base + local(i, j)) =
-              evaluate_limit_surface(positions, model.patches().control[e],
+              evaluate_limit_surface(positions, model.patches().patch[e],
                                      static_cast<double>(i) / r, static_cast<double>(j) / r)
                   .position.transpose();
       Eigen::Index t = e * sub;

@@ -114,10 +114,13 @@ void validate_control_mesh(const TriangleMesh& mesh) {
   check_degenerate(mesh, topo);
   check_inverted(mesh, topo);
   for (int v = 0; v < topo.num_vertices(); ++v) {
-    if (!topo.is_boundary_vertex(v) && topo.valence(v) != 6) {
+    const int valence = topo.valence(v);
+    if (!topo.is_boundary_vertex(v) &&
+        (valence < kMinInteriorValence || valence > kMaxInteriorValence)) {
       throw MeshError("interior vertex " + std::to_string(v) + " has valence " +
-                      std::to_string(topo.valence(v)) +
-                      "; growshell supports only regular (valence-6) interior vertices");
+                      std::to_string(valence) + "; growshell's Loop elements support interior "
+                      "valences " + std::to_string(kMinInteriorValence) + " to " +
+                      std::to_string(kMaxInteriorValence));
     }
   }
   for (int f = 0; f < topo.num_faces(); ++f) {

@@ -1,7 +1,9 @@
 #include "libshell/subdivision/element_patches.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "libshell/mesh/mesh_error.hpp"
 
@@ -27,47 +29,66 @@ std::array<int, 6> ring_from(const MeshTopology& topo, int v, int first, int fac
   return rotated;
 }
 
-void require_same(int from_first, int from_second, int face, const char* node) {
-  if (from_first != from_second) {
-    throw MeshError("face " + std::to_string(face) +
-                    ": the one-rings of its vertices disagree on " + node + " (vertex " +
-                    std::to_string(from_first) + " vs vertex " + std::to_string(from_second) + ")");
-  }
+// The 12-node patch of face f if its corners' one-rings form the regular configuration.
+std::optional<LoopPatch> regular_patch(const MeshTopology& topology, int f) {
+  const auto& t = topology.face(f);
+  const auto ra = ring_from(topology, t[0], t[1], f);
+  const auto rb = ring_from(topology, t[1], t[2], f);
+  const auto rc = ring_from(topology, t[2], t[0], f);
+  std::array<int, 12> nodes{};
+  if (!regular_patch_nodes(ra, rb, rc, nodes)) return std::nullopt;
+  LoopPatch patch;
+  patch.control.assign(nodes.begin(), nodes.end());
+  return patch;
 }
 
 }  // namespace
+
+int ElementPatches::num_irregular() const {
+  return static_cast<int>(std::count_if(patch.begin(), patch.end(),
+                                        [](const LoopPatch& p) { return !p.is_regular(); }));
+}
+
+LoopPatch build_surrounding_patch(const MeshTopology& topology, int face) {
+  const auto& t = topology.face(face);
+  LoopPatch patch;
+  std::unordered_map<int, int> local;
+  const auto local_index = [&](int v) {
+    auto [it, inserted] = local.try_emplace(v, static_cast<int>(patch.control.size()));
+    if (inserted) patch.control.push_back(v);
+    return it->second;
+  };
+  for (int v : t) local_index(v);
+  patch.corners = {0, 1, 2};
+  std::vector<int> faces;
+  for (int v : t) {
+    if (topology.is_boundary_vertex(v))
+      throw MeshError("face " + std::to_string(face) + ": its vertex " + std::to_string(v) +
+                      " is on the boundary of the control mesh, so the face is no element");
+    for (int u : topology.one_ring(v)) faces.push_back(topology.face_with_edge(v, u));
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  for (int f : faces) {
+    const auto& g = topology.face(f);
+    patch.faces.push_back({local_index(g[0]), local_index(g[1]), local_index(g[2])});
+  }
+  return patch;
+}
 
 ElementPatches build_element_patches(const MeshTopology& topology) {
   ElementPatches patches;
   for (int f = 0; f < topology.num_faces(); ++f) {
     const auto& t = topology.face(f);
-    if (!is_regular_interior(topology, t[0]) || !is_regular_interior(topology, t[1]) ||
-        !is_regular_interior(topology, t[2])) {
+    if (topology.is_boundary_vertex(t[0]) || topology.is_boundary_vertex(t[1]) ||
+        topology.is_boundary_vertex(t[2]))
       continue;
-    }
-    const int a = t[0];
-    const int b = t[1];
-    const int c = t[2];
-    const auto ra = ring_from(topology, a, b, f);  // b, c, n5, n2, n1, n3
-    const auto rb = ring_from(topology, b, c, f);  // c, a, n3, n6, n10, n11
-    const auto rc = ring_from(topology, c, a, f);  // a, b, n11, n12, n9, n5
-    require_same(ra[1], c, f, "node 8");
-    require_same(rb[1], a, f, "node 4");
-    require_same(rc[1], b, f, "node 7");
-    require_same(ra[5], rb[2], f, "node 3");
-    require_same(rb[5], rc[2], f, "node 11");
-    require_same(rc[5], ra[2], f, "node 5");
-
-    const std::array<int, 12> nodes = {ra[4], ra[3], ra[5], a,     ra[2], rb[3],
-                                       b,     c,     rc[4], rb[4], rb[5], rc[3]};
-    std::array<int, 12> sorted = nodes;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-      throw MeshError("face " + std::to_string(f) +
-                      ": its 12 patch control points are not distinct (the mesh is too small "
-                      "around this element)");
-    }
-    patches.control.push_back(nodes);
+    const bool regular_corners = is_regular_interior(topology, t[0]) &&
+                                 is_regular_interior(topology, t[1]) &&
+                                 is_regular_interior(topology, t[2]);
+    std::optional<LoopPatch> regular;
+    if (regular_corners) regular = regular_patch(topology, f);
+    patches.patch.push_back(regular ? std::move(*regular) : build_surrounding_patch(topology, f));
     patches.face.push_back(f);
   }
   return patches;

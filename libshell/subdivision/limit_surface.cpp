@@ -2,15 +2,12 @@
 
 #include <Eigen/Geometry>
 
-#include "libshell/subdivision/loop_basis.hpp"
-
 namespace growshell {
 
 LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                         const std::array<int, 12>& control, double v, double w) {
-  const LoopBasisValues basis = evaluate_regular_loop_basis(v, w);
-  Eigen::Matrix<double, 12, 3> X;
-  for (int i = 0; i < 12; ++i) X.row(i) = positions.row(control[i]);
+                                         const LoopPatch& patch, const PatchBasis& basis) {
+  Eigen::MatrixX3d X(patch.size(), 3);
+  for (int i = 0; i < patch.size(); ++i) X.row(i) = positions.row(patch.control[static_cast<std::size_t>(i)]);
   LimitSurfacePoint p;
   p.position = X.transpose() * basis.value;
   p.tangents = X.transpose() * basis.first;
@@ -23,6 +20,11 @@ LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d
   p.mean_curvature = 0.5 * shape.trace();
   p.gaussian_curvature = p.curvature_tensor.determinant() / p.metric.determinant();
   return p;
+}
+
+LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                         const LoopPatch& patch, double v, double w) {
+  return evaluate_limit_surface(positions, patch, evaluate_patch_basis(patch, v, w));
 }
 
 }  // namespace growshell

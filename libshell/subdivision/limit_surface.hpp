@@ -1,10 +1,12 @@
 #pragma once
 /// \file
-/// Evaluation of the limit surface of a regular Loop patch: position, tangents, second
-/// derivatives, unit normal and curvatures.
+/// Evaluation of the limit surface of a Loop patch: position, tangents, second derivatives,
+/// unit normal and curvatures.
 
 #include <Eigen/Core>
 #include <array>
+
+#include "libshell/subdivision/loop_patch.hpp"
 
 namespace growshell {
 
@@ -20,9 +22,14 @@ struct LimitSurfacePoint {
   double gaussian_curvature;  ///< K = det b / det a (1/m^2)
 };
 
-/// Evaluates the limit surface of the patch `control` (12 vertex indices into `positions`,
-/// one row per vertex) at parameter (v, w) of the element triangle.
+/// Evaluates the limit surface of `patch` (vertex indices into `positions`, one row per vertex)
+/// at parameter (v, w) of the element triangle (see evaluate_patch_basis for what this means at
+/// an extraordinary corner).
 LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                         const std::array<int, 12>& control, double v, double w);
+                                         const LoopPatch& patch, double v, double w);
+
+/// The same from a basis already evaluated at the point (`basis` of `patch`).
+LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                         const LoopPatch& patch, const PatchBasis& basis);
 
 }  // namespace growshell

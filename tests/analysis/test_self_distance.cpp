@@ -39,8 +39,8 @@ BruteForce brute_force_self_distance(const ShellModel& model, const Eigen::Vecto
   std::vector<Eigen::Index> E;
   std::set<std::array<int, 4>> seen;  // (smaller vertex, larger vertex, steps from smaller, 0) or (vertex, -1, -1, 1)
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
-    const int A = control[3], B = control[6], C = control[7];  // at (v, w) = (0,0), (1,0), (0,1)
+    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
+    const int A = control.control[3], B = control.control[6], C = control.control[7];  // at (v, w) = (0,0), (1,0), (0,1)
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n - i; ++j) {
         // Which mesh entity holds the sample: identify by the lattice point it sits on.

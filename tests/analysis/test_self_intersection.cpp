@@ -262,7 +262,7 @@ BruteForce brute_force(const ShellModel& model, const Eigen::VectorXd& x, const 
   std::vector<std::array<Eigen::Vector3d, 3>> P, R;
   std::vector<Eigen::Index> E;
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().control[static_cast<std::size_t>(e)];
+    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
     const auto add = [&](std::array<std::array<int, 2>, 3> ij) {
       std::array<Eigen::Vector3d, 3> p, r;
       for (int k = 0; k < 3; ++k) {

@@ -9,6 +9,7 @@
 
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "tests/support/polygon_disc.hpp"
 
 namespace growshell {
 namespace {
@@ -89,6 +90,62 @@ TEST_P(ShellModelDerivatives, GradientHessianAndExcessAngleDerivativeMatchFinite
 INSTANTIATE_TEST_SUITE_P(ThicknessAndQuadrature, ShellModelDerivatives,
                          ::testing::Combine(::testing::Values(1e-3, 0.04),
                                             ::testing::Values(1, 2, 6)));
+
+class IrregularMeshDerivatives : public ::testing::TestWithParam<int> {};
+
+TEST_P(IrregularMeshDerivatives, GradientHessianAndExcessAngleDerivativeMatchFiniteDifferences) {
+  // A disc whose centre has valence n (its n elements have an extraordinary corner), curved and
+  // perturbed, with rim elements next to the ghost layer too; and a thin and a thick sheet.
+  const int n = GetParam();
+  for (const double h : {1e-3, 0.04}) {
+    SCOPED_TRACE("valence " + std::to_string(n) + ", h = " + std::to_string(h));
+    ShellModel model(test_support::polygon_disc(n, 4, 0.25), settings_with(h, 2));
+    ASSERT_EQ(model.patches().num_irregular(), n == 3 ? 6 : n);
+    model.set_excess_angle(1.3);
+    const Eigen::VectorXd x = bent_state(model, 0.02, 3);
+    const Eigen::Index dim = model.dimension();
+    Eigen::VectorXd g;
+    Eigen::SparseMatrix<double> H = model.hessian_pattern();
+    const double E = model.evaluate(x, &g, &H);
+    EXPECT_NEAR(E, model.energy_breakdown(x).total(), 1e-12 * E);
+    Eigen::VectorXd fd_g(dim);
+    Eigen::MatrixXd fd_H(dim, dim);
+    for (Eigen::Index i = 0; i < dim; ++i) {
+      Eigen::VectorXd xp = x, xm = x, gp, gm;
+      xp(i) += kStep;
+      xm(i) -= kStep;
+      fd_g(i) = (model.evaluate(xp, &gp, nullptr) - model.evaluate(xm, &gm, nullptr)) / (2 * kStep);
+      fd_H.col(i) = (gp - gm) / (2 * kStep);
+    }
+    EXPECT_LE((g - fd_g).norm(), 1e-6 * g.norm());
+    const Eigen::MatrixXd H_dense = Eigen::MatrixXd(H).selfadjointView<Eigen::Upper>();
+    EXPECT_LE((H_dense - fd_H).norm(), 1e-6 * H_dense.norm());
+    const Eigen::VectorXd dg = model.gradient_excess_angle_derivative(x);
+    Eigen::VectorXd gp, gm;
+    model.set_excess_angle(1.3 + 1e-6);
+    model.evaluate(x, &gp, nullptr);
+    model.set_excess_angle(1.3 - 1e-6);
+    model.evaluate(x, &gm, nullptr);
+    EXPECT_LE((dg - (gp - gm) / 2e-6).norm(), 1e-6 * dg.norm());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Valences3To12, IrregularMeshDerivatives,
+                         ::testing::Values(3, 4, 5, 7, 8, 12));
+
+TEST(ShellModel, IrregularFlatDiscHasNoEnergyAndItsRigidMotionsNone) {
+  // The reference of a mesh with an extraordinary vertex is stress-free, and stays so when moved.
+  ShellModel model(test_support::polygon_disc(5, 5, 0.2), settings_with(0.02));
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
+  Eigen::VectorXd x = model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
+    x.segment<3>(3 * v) = R * x.segment<3>(3 * v) + Eigen::Vector3d(0.1, 0.2, 0.3);
+  Eigen::VectorXd g;
+  EXPECT_LT(model.evaluate(model.reference_positions(), nullptr, nullptr), 1e-25);
+  EXPECT_LT(model.evaluate(x, &g, nullptr), 1e-20);
+  EXPECT_LT(g.cwiseAbs().maxCoeff(), 1e-10 * model.natural_force_scale());
+}
 
 TEST(ShellModel, AssemblyIsIndependentOfThreadCount) {
   ShellModel one(small_disc(5), settings_with(0.02, 2, 1));

@@ -72,7 +72,7 @@ TEST(ContactProxy, MapReproducesTheLimitSurfaceAtEveryTriangleCorner) {
       for (int c = 0; c < 3; ++c) {
         const double v = static_cast<double>(lattice[c][0]) / n,
                      w = static_cast<double>(lattice[c][1]) / n;
-        const auto& control = model.patches().control[static_cast<std::size_t>(e)];
+        const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
         const int p = proxy.triangles(t, c);
         worst = std::max(
             worst,
@@ -87,7 +87,7 @@ TEST(ContactProxy, MapReproducesTheLimitSurfaceAtEveryTriangleCorner) {
     double worst_stored = 0.0;
     for (Eigen::Index p = 0; p < proxy.num_vertices(); ++p) {
       const auto& control =
-          model.patches().control[static_cast<std::size_t>(proxy.vertex_element(p))];
+          model.patches().patch[static_cast<std::size_t>(proxy.vertex_element(p))];
       worst_stored = std::max(
           worst_stored, (y.row(p).transpose() - evaluate_limit_surface(rows, control,
                                                                        proxy.vertex_parameter(p, 0),
@@ -186,7 +186,7 @@ TEST(ContactProxy, FlatDiscGivesAFlatProxyWithZeroNormalSag) {
       for (Eigen::Index p = 0; p < y.rows(); ++p) {
         // The corner named by the stored parameter: (0, 0), (1, 0), (0, 1) -> nodes 3, 6, 7.
         const auto& control =
-            model.patches().control[static_cast<std::size_t>(proxy.vertex_element(p))];
+            model.patches().patch[static_cast<std::size_t>(proxy.vertex_element(p))].control;
         const int node = proxy.vertex_parameter(p, 0) == 1.0   ? 6
                          : proxy.vertex_parameter(p, 1) == 1.0 ? 7
                                                                : 3;

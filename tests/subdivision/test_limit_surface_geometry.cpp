@@ -29,11 +29,11 @@ struct GeometryErrors {
 /// Elements for which `skip(control)` is true are left out.
 template <class Exact>
 GeometryErrors measure(const TriangleMesh& mesh, const Exact& exact,
-                       const std::function<bool(const std::array<int, 12>&)>& skip = {}) {
+                       const std::function<bool(const LoopPatch&)>& skip = {}) {
   const MeshTopology topology(mesh);
   const ElementPatches patches = build_element_patches(topology);
   GeometryErrors err;
-  for (const auto& control : patches.control) {
+  for (const auto& control : patches.patch) {
     if (skip && skip(control)) continue;
     for (const auto& q : triangle_quadrature(4)) {
       const LimitSurfacePoint p = evaluate_limit_surface(mesh.vertices, control, q.v, q.w);
@@ -132,7 +132,8 @@ TEST(LimitSurfaceGeometry, SphereErrorsFallQuadratically) {
       return std::make_tuple(r - rho, Eigen::Vector3d(x / r), -1.0 / rho, 1.0 / (rho * rho));
     };
     all.push_back(measure(mesh, sphere));
-    away.push_back(measure(mesh, sphere, [&](const std::array<int, 12>& control) {
+    away.push_back(measure(mesh, sphere, [&](const LoopPatch& patch) {
+      const auto& control = patch.control;
       const Eigen::Vector3d centroid =
           (planar.vertices.row(control[3]) + planar.vertices.row(control[6]) +
            planar.vertices.row(control[7]))

@@ -125,7 +125,7 @@ TEST(LoopBasis, LimitSurfaceIsC1AcrossElementEdges) {
     const Eigen::Vector2d s = (1 - t) * a + t * b;
     const LoopBasisValues basis = evaluate_regular_loop_basis(s.x(), s.y());
     Eigen::Matrix<double, 12, 3> X;
-    for (int i = 0; i < 12; ++i) X.row(i) = mesh.vertices.row(patches.control[e][i]);
+    for (int i = 0; i < 12; ++i) X.row(i) = mesh.vertices.row(patches.patch[e].control[i]);
     const Eigen::Vector3d x = X.transpose() * basis.value;
     const Eigen::Matrix<double, 3, 2> A = X.transpose() * basis.first;
     const Eigen::Vector3d along = A * (b - a);
