@@ -3,7 +3,7 @@
 /// Graded disc meshes of concentric rings with the symmetry of the square: a centre vertex,
 /// rings whose radial spacing follows the size field s(r) = clamp(c r, s_min, s_max)
 /// (radial_size.hpp), and per-ring vertex counts that stay equal (log-polar region) or double
-/// (uniform core). Interior vertices may be irregular (valence 4..8 and the centre's).
+/// (uniform core). Interior vertices may be irregular (valences 5..7 and the centre's).
 
 #include <limits>
 #include <vector>
