@@ -78,8 +78,22 @@ TriangleMesh add_ghost_layer(const TriangleMesh& sheet) {
     }
   }
   if (edges.empty()) throw MeshError("add_ghost_layer: the sheet has no boundary (closed surface)");
-  // The two ghosts at a boundary vertex coincide when the gap between them is 0 (e.g. where
-  // both boundary faces have their right angle at the far end): they become one ghost.
+  // Gap angle at boundary vertex v between the ghosts at p1 (of the incoming edge u -> v) and
+  // p2 (of the outgoing edge v -> w): 2 pi minus the sheet angles and the two ghost faces' angles.
+  const auto gap_at = [&](int v, const Eigen::Vector2d& p1, const Eigen::Vector2d& p2) {
+    const std::vector<int>& ring = topo.one_ring(v);  // w (outgoing) ... u (incoming)
+    const Eigen::Vector2d p = xy(v);
+    double occupied = angle_at(p, xy(ring.back()), p1) + angle_at(p, p2, xy(ring.front()));
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      occupied += angle_at(p, xy(ring[i]), xy(ring[i + 1]));
+    return 2.0 * std::numbers::pi - occupied;
+  };
+  const auto raw_xy = [&](int e) -> Eigen::Vector2d {
+    return edges[static_cast<std::size_t>(e)].ghost.head<2>().transpose();
+  };
+  // 2. Where the gap at a boundary vertex is 0 (the two ghosts coincide, e.g. where both
+  // boundary faces have their right angle at the far end) or negative (the ghost faces
+  // overlap at a reflex vertex), its two ghosts become one, at their mean.
   std::vector<int> root(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) root[e] = static_cast<int>(e);
   const auto find = [&](int e) {
@@ -89,50 +103,53 @@ TriangleMesh add_ghost_layer(const TriangleMesh& sheet) {
   const double merge_tolerance = 1e-12 * extent;
   for (int v = 0; v < static_cast<int>(n); ++v) {
     if (!topo.is_boundary_vertex(v)) continue;
-    const int e1 = find(in_edge[static_cast<std::size_t>(v)]);
-    const int e2 = find(out_edge[static_cast<std::size_t>(v)]);
-    if (e1 != e2 && (edges[static_cast<std::size_t>(e1)].ghost -
-                     edges[static_cast<std::size_t>(e2)].ghost).norm() <= merge_tolerance)
-      root[static_cast<std::size_t>(std::max(e1, e2))] = std::min(e1, e2);
+    const int in = in_edge[static_cast<std::size_t>(v)];
+    const int out = out_edge[static_cast<std::size_t>(v)];
+    const bool merge = (raw_xy(in) - raw_xy(out)).norm() <= merge_tolerance ||
+                       gap_at(v, raw_xy(in), raw_xy(out)) <= kGhostGapMergeAngle;
+    const int e1 = find(in);
+    const int e2 = find(out);
+    if (merge && e1 != e2) root[static_cast<std::size_t>(std::max(e1, e2))] = std::min(e1, e2);
   }
   std::vector<Eigen::RowVector3d> ghosts;
+  std::vector<int> group_size;
   std::vector<int> ghost_of_edge(edges.size(), -1);
   std::vector<std::array<int, 3>> ghost_faces;
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto r = static_cast<std::size_t>(find(static_cast<int>(e)));
     if (ghost_of_edge[r] < 0) {
       ghost_of_edge[r] = static_cast<int>(n + static_cast<Eigen::Index>(ghosts.size()));
-      ghosts.push_back(edges[r].ghost);
+      ghosts.push_back(Eigen::RowVector3d::Zero());
+      group_size.push_back(0);
     }
     ghost_of_edge[e] = ghost_of_edge[r];
+    ghosts[static_cast<std::size_t>(ghost_of_edge[e] - n)] += edges[e].ghost;
+    ++group_size[static_cast<std::size_t>(ghost_of_edge[e] - n)];
     ghost_faces.push_back({edges[e].b, edges[e].a, ghost_of_edge[e]});
   }
+  for (std::size_t g = 0; g < ghosts.size(); ++g)
+    if (group_size[g] > 1) ghosts[g] /= static_cast<double>(group_size[g]);
   const auto ghost_xy = [&](int g) -> Eigen::Vector2d {
     return ghosts[static_cast<std::size_t>(g - n)].head<2>().transpose();
   };
 
-  // 2. Close the fan of every boundary vertex between its two ghosts.
+  // 3. Close the fan of every boundary vertex between its two ghosts.
   std::vector<std::array<int, 3>> closing_faces;
   for (int v = 0; v < static_cast<int>(n); ++v) {
     if (!topo.is_boundary_vertex(v)) continue;
     const std::vector<int>& ring = topo.one_ring(v);  // w (outgoing) ... u (incoming)
-    const int w = ring.front();
-    const int u = ring.back();
     const int g1 = ghost_of_edge[static_cast<std::size_t>(in_edge[static_cast<std::size_t>(v)])];
     const int g2 = ghost_of_edge[static_cast<std::size_t>(out_edge[static_cast<std::size_t>(v)])];
     if (g1 == g2) continue;  // merged ghosts: the fan is already closed
     const Eigen::Vector2d p = xy(v);
-    double occupied = 0.0;
-    for (std::size_t i = 0; i + 1 < ring.size(); ++i) occupied += angle_at(p, xy(ring[i]), xy(ring[i + 1]));
-    occupied += angle_at(p, xy(u), ghost_xy(g1)) + angle_at(p, ghost_xy(g2), xy(w));
-    const double gap = 2.0 * std::numbers::pi - occupied;
+    const double gap = gap_at(v, ghost_xy(g1), ghost_xy(g2));
     const auto fail = [&](const char* why) {
       std::ostringstream m;
       m << "add_ghost_layer: boundary vertex " << v << " at (" << p.x() << ", " << p.y()
         << "): " << why << " (gap angle " << gap * 180.0 / std::numbers::pi << " degrees)";
       throw MeshError(m.str());
     };
-    if (!(gap > 1e-9)) fail("its two ghost faces overlap; the boundary is too reflex there");
+    if (!(gap > 0.0)) fail("its ghost faces overlap after merging; the boundary is too reflex there");
     if (gap <= kGhostGapSplitAngle) {
       if (!(cross2(ghost_xy(g1) - p, ghost_xy(g2) - p) > 0.0))
         fail("the closing face (v, g1, g2) would be degenerate");
@@ -163,6 +180,25 @@ TriangleMesh add_ghost_layer(const TriangleMesh& sheet) {
   Eigen::Index row = nf;
   for (const auto* list : {&ghost_faces, &closing_faces})
     for (const auto& t : *list) out.faces.row(row++) << t[0], t[1], t[2];
+  // Merged ghosts may invert a ghost face or, for a boundary loop of only reflex vertices
+  // (a hole of a few edges), close a ghost's fan, which would make ghost faces elements.
+  for (Eigen::Index f = nf; f < out.faces.rows(); ++f) {
+    const Eigen::Vector2d a = out.vertices.row(out.faces(f, 0)).head<2>();
+    const Eigen::Vector2d b = out.vertices.row(out.faces(f, 1)).head<2>();
+    const Eigen::Vector2d c = out.vertices.row(out.faces(f, 2)).head<2>();
+    if (!(cross2(b - a, c - a) > 0.0)) {
+      std::ostringstream m;
+      m << "add_ghost_layer: the ghost face (" << out.faces(f, 0) << ", " << out.faces(f, 1)
+        << ", " << out.faces(f, 2) << ") at sheet vertex " << out.faces(f, 0)
+        << " is inverted: the boundary is too reflex there (refine the sheet near it)";
+      throw MeshError(m.str());
+    }
+  }
+  const MeshTopology out_topo(out);
+  for (int g = static_cast<int>(n); g < out_topo.num_vertices(); ++g)
+    if (!out_topo.is_boundary_vertex(g))
+      throw MeshError("add_ghost_layer: ghost vertex " + std::to_string(g) +
+                      " closes a boundary loop of reflex vertices (a hole of too few edges)");
   return out;
 }
 

@@ -14,6 +14,11 @@ namespace growshell {
 /// gap gets more than 60 degrees.
 inline constexpr double kGhostGapSplitAngle = 2.0943951023931954923;  // 2 pi / 3
 
+/// Gap angle (radians) at a boundary vertex up to which add_ghost_layer merges the vertex's two
+/// ghosts into one (at their mean): 1e-6, i.e. where they coincide (gap 0) or where the two
+/// ghost faces overlap (gap < 0, at a reflex boundary vertex).
+inline constexpr double kGhostGapMergeAngle = 1e-6;
+
 /// The control mesh whose elements are exactly the faces of `sheet`.
 ///
 /// `sheet` must be a planar (every |z| <= 1e-9 times its xy extent), counter-clockwise (every
@@ -25,10 +30,13 @@ inline constexpr double kGhostGapSplitAngle = 2.0943951023931954923;  // 2 pi / 
 ///     face (b, a, g), congruent to (a, b, c) by a half turn, so never inverted. A point
 ///     reflection keeps affine maps exact: a sheet mapped by an affine map gets the same
 ///     affinely mapped ghost vertices.
-///  2. Merging: where the ghosts of the two boundary edges at a boundary vertex coincide
-///     (to 1e-12 times the sheet's extent: the gap below is 0, as at a vertex both of whose
-///     boundary faces have their right angle at the far end), they are one ghost vertex and
-///     that vertex's fan is closed without a further face.
+///  2. Merging: at a boundary vertex whose gap angle phi (below) is <= kGhostGapMergeAngle
+///     or whose two ghosts coincide (to 1e-12 times the sheet's extent) the two ghosts are one
+///     ghost vertex, at their mean, and that vertex's fan is closed without a further face.
+///     phi = 0 happens at a vertex both of whose boundary faces have their right angle at the
+///     far end (the ghosts coincide and do not move); phi < 0 at a reflex vertex whose ghost
+///     faces would overlap (e.g. on a coarsely meshed hole), where the merged ghost is no
+///     longer a point reflection. Merging is transitive along the boundary.
 ///  3. Closing faces: at any other boundary vertex v with incoming boundary edge u -> v (ghost g1) and
 ///     outgoing edge v -> w (ghost g2) the gap between g1 and g2 around v has the angle
 ///     phi = 2 pi - (sheet angles at v) - (angles of the two ghost faces at v). If
@@ -50,9 +58,10 @@ inline constexpr double kGhostGapSplitAngle = 2.0943951023931954923;  // 2 pi / 
 /// exactly kGhostGapSplitAngle).
 ///
 /// Throws MeshError for a sheet that is empty, not planar, not manifold (MeshTopology's
-/// errors), has a face that is not counter-clockwise (naming it), has no boundary, or has a
-/// boundary vertex whose two ghost faces overlap (phi <= 0: the boundary is too reflex there)
-/// or whose split gap would give an inverted face (naming the vertex and the angle).
+/// errors), has a face that is not counter-clockwise (naming it), has no boundary, or where
+/// the boundary is too reflex for the construction: a ghost face inverted after merging, a
+/// split gap whose extra ghost lies outside it, or a boundary loop merged into a single ghost
+/// (a hole of too few edges), naming the vertex.
 TriangleMesh add_ghost_layer(const TriangleMesh& sheet);
 
 }  // namespace growshell

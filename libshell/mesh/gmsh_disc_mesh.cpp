@@ -66,6 +66,14 @@ void check_options(const GmshDiscMeshOptions& o) {
   if (o.msh_file_version != 4.1 && o.msh_file_version != 2.2)
     throw MeshError(kCaller + ": msh_file_version must be 4.1 or 2.2, got " +
                     std::to_string(o.msh_file_version));
+  if (o.inner_radius > 0.0) {
+    const double edges = 2.0 * std::numbers::pi * o.inner_radius /
+                         radial_size({o.size_slope, o.size_floor, o.size_max}, o.inner_radius);
+    if (edges < 12.0)
+      throw MeshError(kCaller + ": the inner circle would get only " + std::to_string(edges) +
+                      " edges of size s(inner_radius) (at least 12 are needed for its ghost "
+                      "layer); decrease size_floor or size_max");
+  }
   // Triangles ~ (4 / sqrt 3) * integral of dA / s(r)^2 over the region.
   const RadialSize size{o.size_slope, o.size_floor, o.size_max};
   double estimate = 0.0;

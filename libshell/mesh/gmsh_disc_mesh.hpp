@@ -53,7 +53,8 @@ struct GmshDiscMeshOptions {
 /// so two calls with the same options give identical meshes. Gmsh's terminal output is off
 /// (General.Terminal = 0); Gmsh is initialized and finalized inside the call (Gmsh has one
 /// global state: calls are serialized by a mutex, and the caller must not hold a Gmsh session
-/// of its own, which this call would finalize). Throws MeshError for invalid options, when
+/// of its own, which this call would finalize). Throws MeshError for invalid options (also
+/// for an inner circle that would get fewer than 12 edges, 2 pi R_i / s(R_i) < 12), when
 /// Gmsh fails (with Gmsh's last error), when the mesh would exceed ~1e7 triangles (estimated
 /// from the size field), or when the result is not a valid sheet (MeshTopology's errors).
 TriangleMesh make_gmsh_disc_sheet(const GmshDiscMeshOptions& options);

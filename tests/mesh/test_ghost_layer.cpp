@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <numbers>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -246,6 +248,40 @@ TEST(GhostLayer, CommutesWithTheMirrorsAndTheQuarterTurnOfTheSheet) {
         [&](const MeshTopology& t, const Eigen::MatrixX3d& P) {
           check_maps_faces_onto_faces(t, quarter_turn_symmetry(P, 1e-12));
         });
+  }
+}
+
+/// The L-shaped sheet [0, 2]^2 minus (1, 2)^2 of three unit cells, split by the diagonal
+/// (i, j)-(i+1, j+1), except cell (1, 0) if `anti` (split by the other diagonal).
+TriangleMesh l_sheet(bool anti) {
+  TriangleMesh m;
+  m.vertices.resize(8, 3);
+  // 0 (0,0) 1 (1,0) 2 (2,0) 3 (0,1) 4 (1,1) 5 (2,1) 6 (0,2) 7 (1,2)
+  m.vertices << 0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 0, 2, 0, 1, 2, 0;
+  m.faces.resize(6, 3);
+  m.faces << 0, 1, 4, 0, 4, 3,  // cell (0, 0)
+      3, 4, 7, 3, 7, 6,         // cell (0, 1)
+      1, 2, 5, 1, 5, 4;         // cell (1, 0)
+  if (anti) m.faces.bottomRows(2) << 1, 2, 4, 2, 5, 4;
+  return m;
+}
+
+TEST(GhostLayer, CoincidentOrOverlappingGhostsAtAReflexCornerAreMerged) {
+  // Reflex corner (1, 1) (270 degrees). Main diagonals: both ghost faces have 45 degrees there,
+  // the gap is 0 and both ghosts are (2, 2), the missing corner, exactly. Anti-diagonal in
+  // cell (1, 0): its ghost face has 90 degrees at (1, 1), the ghost faces would overlap by
+  // 45 degrees, and the merged ghost is the mean of (1, 2) and (2, 2).
+  for (const bool anti : {false, true}) {
+    SCOPED_TRACE(anti ? "overlap" : "coincident");
+    const TriangleMesh sheet = l_sheet(anti);
+    const TriangleMesh mesh = add_ghost_layer(sheet);
+    const Closures c = expect_valid_ghost_layer(sheet, mesh);
+    EXPECT_GE(c.merged, 1);
+    bool found = false;
+    const Eigen::RowVector3d expected(anti ? 1.5 : 2.0, 2.0, 0.0);
+    for (Eigen::Index g = sheet.vertices.rows(); g < mesh.vertices.rows(); ++g)
+      found = found || mesh.vertices.row(g) == expected;
+    EXPECT_TRUE(found);
   }
 }
 

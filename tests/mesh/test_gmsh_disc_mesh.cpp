@@ -161,6 +161,12 @@ TEST(GmshDiscMesh, AnnulusHasBothCirclesAsBoundary) {
   EXPECT_GT(st.min_angle_deg, 30.0);
   EXPECT_GT(st.min_size_ratio, 0.6);
   EXPECT_LT(st.max_size_ratio, 1.6);
+  // A thin annulus (width 0.1 < s = 0.23): one layer of triangles, and at some inner vertices
+  // the ghost faces would overlap, so add_ghost_layer merges their ghosts.
+  o.inner_radius = 0.9;
+  o.algorithm = GmshAlgorithm::FrontalDelaunay;
+  const TriangleMesh thin = make_gmsh_disc_sheet(o);
+  expect_valid(o, thin, make_gmsh_disc_mesh(o));
 }
 
 TEST(GmshDiscMesh, IsDeterministic) {
@@ -209,6 +215,11 @@ TEST(GmshDiscMesh, RejectsInvalidOptions) {
   o = {};
   o.msh_file_version = 3.0;
   EXPECT_NE(message(o).find("msh_file_version"), std::string::npos) << message(o);
+  o = {};
+  o.inner_radius = 0.01;
+  o.size_floor = 0.05;  // 1.3 edges on the inner circle
+  EXPECT_NE(message(o).find("the inner circle would get only"), std::string::npos)
+      << message(o);
   o = {};
   o.size_floor = 1e-5;
   o.size_slope = 1e-3;
