@@ -14,6 +14,7 @@ packages=(
   coinor-libipopt-dev  # interior-point optimiser for the contact layer
   libmumps-seq-dev     # sequential MUMPS: symmetric indefinite LDL^T with inertia (stability)
   nlohmann-json3-dev   # JSON parameter and result files
+  gmsh libgmsh-dev     # well-kept unstructured mesh generator: the second disc mesh family, sharing no structure with the ring mesh
   libgtest-dev         # unit tests
   libbenchmark-dev     # micro-benchmarks
 )

@@ -84,5 +84,40 @@ TEST(VertexSymmetry, AVertexSetWithoutTheSymmetryIsNamed) {
                std::invalid_argument);
 }
 
+TEST(VertexSymmetry, QuarterTurnIsAGeneralLinearSymmetry) {
+  // The annulus (36 vertices per ring) has the quarter turn, faces included; the hexagonal
+  // disc (60-degree symmetry) does not.
+  AnnulusMeshOptions a;
+  a.inner_radius = 0.25;
+  a.radial_layers = 8;
+  const TriangleMesh annulus = make_annulus_mesh(a);
+  const LinearVertexSymmetry q = quarter_turn_symmetry(annulus.vertices, 1e-9);
+  EXPECT_LT(symmetry_defect(annulus.vertices, q), 1e-12);
+  EXPECT_NO_THROW(check_maps_faces_onto_faces(MeshTopology(annulus), q));
+  // Order 4: q^4 = id, q^2 = the half turn.
+  const VertexSymmetry half = half_turn_symmetry(annulus.vertices, 2, 1e-9);
+  for (std::size_t v = 0; v < q.image.size(); ++v) {
+    const int q2 = q.image[static_cast<std::size_t>(q.image[v])];
+    EXPECT_EQ(q2, half.image[v]);
+    EXPECT_EQ(q.image[static_cast<std::size_t>(q.image[static_cast<std::size_t>(q2)])],
+              static_cast<int>(v));
+  }
+  // A lift z = 0.01 x lacks the quarter turn: its defect is max 0.01 |x + y| = 0.014 R.
+  Eigen::MatrixX3d lifted = annulus.vertices;
+  lifted.col(2) = 0.01 * annulus.vertices.col(0);
+  EXPECT_GT(symmetry_defect(lifted, q), 0.005);
+  try {
+    quarter_turn_symmetry(disc_vertices(0.0), 1e-9);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("does not have this symmetry"), std::string::npos)
+        << e.what();
+  }
+  Eigen::Matrix3d not_orthogonal = Eigen::Matrix3d::Identity();
+  not_orthogonal(0, 1) = 0.5;
+  EXPECT_THROW(find_linear_vertex_symmetry(annulus.vertices, not_orthogonal, 1e-9),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace growshell

@@ -1,0 +1,235 @@
+// make_ring_disc_mesh: the ring layout (radii following the size field, counts that stay or
+// double, last ring at R), exact symmetry under both mirrors and the quarter turn (vertices and
+// faces, ghosts included), element angles, sizes and valences for the e-cone settings.
+#include "libshell/mesh/ring_disc_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "libshell/mesh/mesh_error.hpp"
+#include "libshell/mesh/mesh_topology.hpp"
+#include "libshell/mesh/radial_size.hpp"
+#include "libshell/mesh/vertex_symmetry.hpp"
+
+namespace growshell {
+namespace {
+
+RingDiscMeshOptions cone_options(double size_floor) {
+  RingDiscMeshOptions o;
+  o.radius = 1.0;
+  o.size_slope = 0.25;
+  o.size_floor = size_floor;
+  return o;
+}
+
+/// Statistics of the elements (the sheet's faces, rows 0..num_elements-1 of the mesh).
+struct ElementStats {
+  double min_angle_deg = 180.0;
+  double min_size_ratio = 1e300;  // longest edge / s(r at the centroid)
+  double max_size_ratio = 0.0;
+};
+
+ElementStats element_stats(const TriangleMesh& mesh, Eigen::Index num_elements,
+                           const RadialSize& size) {
+  ElementStats st;
+  for (Eigen::Index f = 0; f < num_elements; ++f) {
+    Eigen::Vector2d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = mesh.vertices.row(mesh.faces(f, k)).head<2>();
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d a = p[(k + 1) % 3] - p[k];
+      const Eigen::Vector2d b = p[(k + 2) % 3] - p[k];
+      const double angle = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
+      st.min_angle_deg = std::min(st.min_angle_deg, angle * 180.0 / std::numbers::pi);
+      longest = std::max(longest, a.norm());
+    }
+    const double r = ((p[0] + p[1] + p[2]) / 3.0).norm();
+    const double ratio = longest / radial_size(size, r);
+    st.min_size_ratio = std::min(st.min_size_ratio, ratio);
+    st.max_size_ratio = std::max(st.max_size_ratio, ratio);
+  }
+  return st;
+}
+
+std::map<int, int> interior_valence_histogram(const TriangleMesh& mesh) {
+  const MeshTopology topo(mesh);
+  std::map<int, int> h;
+  for (int v = 0; v < topo.num_vertices(); ++v)
+    if (!topo.is_boundary_vertex(v)) ++h[topo.valence(v)];
+  return h;
+}
+
+TEST(RingDiscMesh, RingsFollowTheSizeFieldAndEndAtTheRim) {
+  for (const double s_min : {0.01, 0.005, 0.0005}) {
+    SCOPED_TRACE("s_min = " + std::to_string(s_min));
+    const RingDiscMeshOptions o = cone_options(s_min);
+    const RingDiscRings rings = ring_disc_rings(o);
+    const RadialSize size{o.size_slope, o.size_floor, o.size_max};
+    const std::size_t M = rings.radii.size() - 1;
+    EXPECT_EQ(rings.radii[M], 1.0);
+    EXPECT_EQ(rings.counts[1], 8);
+    for (std::size_t j = 1; j <= M; ++j) {
+      EXPECT_EQ(rings.counts[j] % 8, 0);
+      if (j >= 2) {
+        EXPECT_TRUE(rings.counts[j] == rings.counts[j - 1] ||
+                    rings.counts[j] == 2 * rings.counts[j - 1]);
+        // Equal counts are offset by half a spacing, a doubled ring is unshifted.
+        if (rings.counts[j] == rings.counts[j - 1]) {
+          EXPECT_NE(rings.half_offset[j], rings.half_offset[j - 1]);
+        } else {
+          EXPECT_FALSE(rings.half_offset[j]);
+        }
+      }
+      // Radial spacing = s at the size coordinate's midpoint, times u(R)/M in [0.98, 1.02].
+      const double dr = rings.radii[j] - rings.radii[j - 1];
+      const double s_mid = radial_size(size, 0.5 * (rings.radii[j] + rings.radii[j - 1]));
+      EXPECT_GT(dr / s_mid, 0.97);  // u(R)/M >= 1 - 1/(2M)
+      EXPECT_LT(dr / s_mid, 1.16);  // geometric steps e^{c} - 1 over c (1 + ...) at c = 0.25
+      if (j >= 2) {
+        const double tangential = 2.0 * std::numbers::pi * rings.radii[j] / rings.counts[j];
+        const double ratio = tangential / radial_size(size, rings.radii[j]);
+        EXPECT_GT(ratio, 0.7);
+        EXPECT_LT(ratio, 1.58);
+      }
+    }
+    // The log-polar region keeps one count: 2 pi / c = 25.1 is rounded to 32 = 8 * 4.
+    EXPECT_EQ(rings.counts[M], 32);
+  }
+}
+
+TEST(RingDiscMesh, MirrorsAndQuarterTurnMapVerticesAndFacesExactly) {
+  std::vector<RingDiscMeshOptions> cases = {cone_options(0.01), cone_options(0.0005)};
+  for (const int valence : {4, 12}) {
+    RingDiscMeshOptions o = cone_options(0.02);
+    o.center_valence = valence;
+    cases.push_back(o);
+  }
+  RingDiscMeshOptions capped = cone_options(0.01);
+  capped.size_max = 0.08;  // uniform outer region: the counts double again beyond r = 0.32
+  cases.push_back(capped);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    SCOPED_TRACE("case " + std::to_string(k));
+    const TriangleMesh mesh = make_ring_disc_mesh(cases[k]);
+    const MeshTopology topo(mesh);
+    for (const int axis : {0, 1}) {
+      const VertexSymmetry m = mirror_symmetry(mesh.vertices, axis, 1e-12);
+      EXPECT_EQ(symmetry_defect(mesh.vertices, m), 0.0);  // bit for bit, ghosts included
+      EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, m));
+    }
+    const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-12);
+    EXPECT_EQ(symmetry_defect(mesh.vertices, q), 0.0);
+    EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, q));
+    // The quarter turn has order 4: no vertex but the centre is fixed.
+    for (std::size_t v = 1; v < q.image.size(); ++v) EXPECT_NE(q.image[v], static_cast<int>(v));
+    EXPECT_EQ(q.image[0], 0);
+  }
+}
+
+TEST(RingDiscMesh, IsAControlMeshWithTheRimOnTheCircle) {
+  const RingDiscMeshOptions o = cone_options(0.005);
+  const TriangleMesh sheet = make_ring_disc_sheet(o);
+  const TriangleMesh mesh = make_ring_disc_mesh(o);
+  const RingDiscRings rings = ring_disc_rings(o);
+  const MeshTopology topo(mesh);
+  const int rim_first = rings.first_vertex.back();
+  ASSERT_EQ(sheet.vertices.rows(), rim_first + rings.counts.back());
+  for (int v = 0; v < sheet.vertices.rows(); ++v) {
+    EXPECT_FALSE(topo.is_boundary_vertex(v));
+    const double r = mesh.vertices.row(v).norm();
+    if (v >= rim_first) {
+      EXPECT_NEAR(r, 1.0, 1e-12) << "rim vertex " << v;
+    } else {
+      EXPECT_LT(r, 1.0 - 1e-3);
+    }
+  }
+  for (Eigen::Index g = sheet.vertices.rows(); g < mesh.vertices.rows(); ++g) {
+    EXPECT_TRUE(topo.is_boundary_vertex(static_cast<int>(g)));
+    EXPECT_GT(mesh.vertices.row(g).norm(), 1.0);
+  }
+  int elements = 0;
+  for (int f = 0; f < topo.num_faces(); ++f) {
+    const auto& t = topo.face(f);
+    elements += std::none_of(t.begin(), t.end(), [&](int v) { return topo.is_boundary_vertex(v); });
+  }
+  EXPECT_EQ(elements, sheet.faces.rows());
+}
+
+// Measured for R = 1, c = 0.25 (these numbers are the report's):
+//   s_min   rings  sheet vertices  elements  mesh vertices  min angle  longest edge / s(r)
+//   0.01     17        489           944         521         37.77      [0.993, 1.200]
+//   0.005    20        585          1136         617         38.16      [0.982, 1.188]
+//   0.0005   29        873          1712         905         37.68      [0.995, 1.203]
+// Ring counts 8, 16, 16, 32, 32, ... (32 on every log-polar ring). Interior valences of the
+// ghosted mesh: 8 (the centre) x 1, 7 x 16, 5 x 24, 6 for all others. The 5s are the outer
+// vertices aligned with inner ones at the two doublings (8 -> 16 at ring 2, 16 -> 32 at
+// ring 4), the 7s the inner vertices of the second doubling (ring 3; ring 1 gets 6, its
+// inner side being the centre). The smallest angle (~38 degrees) is the apex of the
+// outward-pointing strip triangles of the log-polar region: radial step (e^{c u(R)/M} - 1) r =
+// 0.28 r against a tangential spacing 2 pi r / 32 = 0.196 r (2 atan(0.098 / 0.28) = 38.6
+// degrees; it would only improve with 24 vertices per ring, which doubling from 8 cannot give).
+// The bounds below sit just under the measured values.
+TEST(RingDiscMesh, AnglesSizesAndValencesForTheConeSettings) {
+  struct Expected {
+    double s_min;
+    int rings;
+    int sheet_vertices;
+  };
+  for (const Expected& e : {Expected{0.01, 17, 489}, Expected{0.005, 20, 585},
+                            Expected{0.0005, 29, 873}}) {
+    SCOPED_TRACE("s_min = " + std::to_string(e.s_min));
+    const RingDiscMeshOptions o = cone_options(e.s_min);
+    const TriangleMesh sheet = make_ring_disc_sheet(o);
+    const TriangleMesh mesh = make_ring_disc_mesh(o);
+    const RingDiscRings rings = ring_disc_rings(o);
+    EXPECT_EQ(static_cast<int>(rings.radii.size()) - 1, e.rings);
+    EXPECT_EQ(sheet.vertices.rows(), e.sheet_vertices);
+    // Euler: a disc with V vertices, B = 32 of them on the rim, has 2 V - B - 2 triangles.
+    EXPECT_EQ(sheet.faces.rows(), 2 * sheet.vertices.rows() - 32 - 2);
+    EXPECT_EQ(mesh.vertices.rows(), sheet.vertices.rows() + 32);
+    const ElementStats st = element_stats(mesh, sheet.faces.rows(),
+                                          RadialSize{o.size_slope, o.size_floor, o.size_max});
+    EXPECT_GT(st.min_angle_deg, 37.5);
+    EXPECT_GT(st.min_size_ratio, 0.95);  // sizes follow s(r) within a factor 1.25
+    EXPECT_LT(st.max_size_ratio, 1.25);
+    const std::map<int, int> hist = interior_valence_histogram(mesh);
+    const int n = static_cast<int>(sheet.vertices.rows());
+    EXPECT_EQ(hist, (std::map<int, int>{{5, 24}, {6, n - 41}, {7, 16}, {8, 1}}));
+  }
+}
+
+TEST(RingDiscMesh, RejectsInvalidOptions) {
+  const auto message = [](RingDiscMeshOptions o) {
+    try {
+      make_ring_disc_mesh(o);
+    } catch (const MeshError& e) {
+      return std::string(e.what());
+    }
+    return std::string("<no MeshError thrown>");
+  };
+  RingDiscMeshOptions o;
+  o.radius = -1.0;
+  EXPECT_NE(message(o).find("radius must be finite and > 0"), std::string::npos) << message(o);
+  o = {};
+  o.size_floor = 0.0;
+  EXPECT_NE(message(o).find("size_floor"), std::string::npos) << message(o);
+  o = {};
+  o.size_max = 0.001;
+  EXPECT_NE(message(o).find("size_max must be >= size_floor"), std::string::npos) << message(o);
+  o = {};
+  o.center_valence = 6;
+  EXPECT_NE(message(o).find("center_valence must be 4, 8 or 12"), std::string::npos)
+      << message(o);
+  o = {};
+  o.size_floor = 1e-9;
+  o.size_slope = 1e-6;
+  EXPECT_NE(message(o).find("more than 1e6"), std::string::npos) << message(o);
+}
+
+}  // namespace
+}  // namespace growshell
