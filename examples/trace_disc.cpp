@@ -24,6 +24,7 @@
 #include "examples/support/mirror_subspace_option.hpp"
 #include "examples/support/saved_point.hpp"
 #include "examples/support/scene_command_line.hpp"
+#include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/analysis/core_radius.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/analysis/self_distance.hpp"
@@ -65,7 +66,14 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
                       the stability index is still the full Hessian's (default 0; a mesh
                       without the mirrors, e.g. a ring, or a resumed state off them is traced
                       in the full space, with a note)
+  --symmetry-threshold D  S4 defect (dimensionless, see below) above which the event
+                      symmetry_lost is written, once, at the first such point (default 1e-3)
   --out DIR           output directory (default: the scene's output.directory)
+For the two-fold cone (--mode 2) branch.csv also holds s4_defect, the distance of the state
+from its improper quarter-turn symmetry S4 (rms over the sheet vertices, over R; exact on a
+mesh with the quarter-turn vertex symmetry, else with the image points interpolated over the
+reference triangulation, which adds O(spacing^2)), and chord_up, chord_down, the gaps of the
+two fold pairs over the generator length (equal for a symmetric cone); nan for other modes.
 Writes DIR/branch.csv, DIR/events.json, DIR/scene.json, DIR/states/, DIR/branch.pvd and VTK
 snapshots every output.snapshot_every points and at events.
 )";
@@ -131,7 +139,10 @@ int run(int argc, char** argv) {
   const double core_radius = cl.number("--core-radius", 0.0);
   const int eigenmodes = cl.integer("--eigenmodes", 2);
   const bool symmetric_subspace = cl.integer("--symmetric-subspace", 0) != 0;
+  const double symmetry_threshold = cl.number("--symmetry-threshold", 1e-3);
   cl.reject_unknown();
+  if (!(symmetry_threshold > 0.0 && std::isfinite(symmetry_threshold)))
+    throw std::invalid_argument("--symmetry-threshold must be finite and > 0");
   validate_scene(scene);
 
   const std::string out_dir = scene.output.directory;
@@ -183,7 +194,7 @@ int run(int argc, char** argv) {
   branch << std::setprecision(12);
   if (resume.empty())
     branch << "phi_e,E_stretch,E_bend,Eb_hat,area,min_gap,n_negative,corrector_iterations,"
-              "arclength,folds,core_radius\n";
+              "arclength,folds,core_radius,s4_defect,chord_up,chord_down\n";
   std::vector<std::string> events_json;
   std::vector<CollectionEntry> snapshots;
   int point_index = 0;
@@ -220,6 +231,19 @@ int run(int argc, char** argv) {
     write_pvd(out_dir + "/branch.pvd", snapshots);
   };
   int samples_on_cone = 0;
+  // The S4 defect and fold-pair chords of the two-fold cone (nan otherwise, or where the
+  // state has no fold directions); symmetry_lost once, at the first point above the threshold.
+  const bool measure_symmetry = scene.continuation.mode == 2;
+  bool symmetry_lost = false;
+  double previous_phi = std::numeric_limits<double>::quiet_NaN();
+  double previous_defect = std::numeric_limits<double>::quiet_NaN();
+  const auto write_events = [&] {
+    std::ofstream ev(out_dir + "/events.json");
+    ev << "[\n";
+    for (std::size_t i = 0; i < events_json.size(); ++i)
+      ev << "  " << events_json[i] << (i + 1 < events_json.size() ? ",\n" : "\n");
+    ev << "]\n";
+  };
   const auto on_sample = [&](const BranchSample& s) {
     model.set_excess_angle(s.parameter);
     const ShellEnergyBreakdown e = model.energy_breakdown(s.x);
@@ -232,23 +256,50 @@ int run(int argc, char** argv) {
     std::printf("%9.5f %13.6e %13.6e %10.5f %10.3e %4d %3d %5d\n", s.parameter, e.stretching,
                 e.bending, e.normalized_bending(), gap, s.negative_eigenvalues,
                 s.corrector_iterations, folds);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double defect = nan, chord_up = nan, chord_down = nan;
+    if (measure_symmetry) {
+      try {
+        const ConeSymmetry sym = measure_cone_symmetry(model, s.x);
+        defect = sym.s4.defect;
+        chord_up = sym.chords.chord_up;
+        chord_down = sym.chords.chord_down;
+      } catch (const std::invalid_argument& err) {
+        std::printf("# no S4 defect at phi_e = %.7f: %s\n", s.parameter, err.what());
+      }
+    }
     branch << s.parameter << ',' << e.stretching << ',' << e.bending << ','
            << e.normalized_bending() << ',' << e.current_area << ',' << gap << ','
            << s.negative_eigenvalues << ',' << s.corrector_iterations << ',' << s.arclength << ','
-           << folds << ',' << core << '\n';
+           << folds << ',' << core << ',' << defect << ',' << chord_up << ',' << chord_down << '\n';
     branch.flush();
     std::ostringstream name;
     name << "point_" << std::setw(5) << std::setfill('0') << point_index;
+    if (!symmetry_lost && defect > symmetry_threshold) {
+      symmetry_lost = true;
+      std::ostringstream j;
+      j << std::setprecision(10) << "{\"kind\": \"symmetry_lost\", \"phi_e\": " << s.parameter
+        << ", \"s4_defect\": " << defect << ", \"chord_up\": " << chord_up
+        << ", \"chord_down\": " << chord_down << ", \"threshold\": " << symmetry_threshold
+        << ", \"state\": \"states/" << name.str() << ".txt\"";
+      // The previous point (below the threshold) and the linear estimate of the crossing.
+      if (std::isfinite(previous_defect))
+        j << ", \"previous_phi_e\": " << previous_phi << ", \"previous_s4_defect\": "
+          << previous_defect << ", \"phi_e_crossing\": "
+          << previous_phi + (symmetry_threshold - previous_defect) / (defect - previous_defect) *
+                                (s.parameter - previous_phi);
+      j << "}";
+      events_json.push_back(j.str());
+      write_events();
+      std::printf("# event symmetry_lost at phi_e = %.7f (S4 defect %.3e > %.3e, chords %.5f up, "
+                  "%.5f down)\n",
+                  s.parameter, defect, symmetry_threshold, chord_up, chord_down);
+    }
+    previous_phi = s.parameter;
+    previous_defect = defect;
     save_point(out_dir + "/states/" + name.str() + ".txt", s);
     if (samples_on_cone++ % scene.output.snapshot_every == 0) snapshot(s, name.str() + ".vtu");
     ++point_index;
-  };
-  const auto write_events = [&] {
-    std::ofstream ev(out_dir + "/events.json");
-    ev << "[\n";
-    for (std::size_t i = 0; i < events_json.size(); ++i)
-      ev << "  " << events_json[i] << (i + 1 < events_json.size() ? ",\n" : "\n");
-    ev << "]\n";
   };
   int special_index = 0;
   const auto on_special = [&](const SpecialPoint& sp) {
