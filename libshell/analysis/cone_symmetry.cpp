@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "libshell/mesh/quarter_turn_symmetry.hpp"
+#include "libshell/mesh/vertex_symmetry.hpp"
 
 namespace growshell {
 namespace {
@@ -266,14 +266,21 @@ void check_state(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd
                                 " entries, the model " + std::to_string(model.dimension()));
 }
 
-/// Image sheet index of every sheet vertex under the quarter turn, or empty with a reason.
+/// Image sheet index of every sheet vertex under the quarter turn about the growth centre, or
+/// empty with a reason (a vertex without an image, or a face whose image is no face).
 std::vector<int> sheet_quarter_turn(const ShellModel& model, double radius, std::string& reason) {
   const Eigen::VectorXd& P = model.reference_positions();
-  const Eigen::MatrixX3d positions =
+  Eigen::MatrixX3d positions =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(P.data(), P.size() / 3, 3);
-  const std::optional<QuarterTurnSymmetry> turn = find_quarter_turn_symmetry(
-      positions, model.topology(), model.settings().growth.center, 1e-9 * radius, &reason);
-  if (!turn) return {};
+  positions.leftCols<2>().rowwise() -= model.settings().growth.center.head<2>().transpose();
+  std::optional<LinearVertexSymmetry> turn;
+  try {
+    turn = quarter_turn_symmetry(positions, 1e-9 * radius);
+    check_maps_faces_onto_faces(model.topology(), *turn);
+  } catch (const std::invalid_argument& e) {
+    reason = e.what();
+    return {};
+  }
   const auto& sheet = model.sheet_vertices();
   std::vector<int> sheet_index(static_cast<std::size_t>(model.topology().num_vertices()), -1);
   for (std::size_t k = 0; k < sheet.size(); ++k)

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <numbers>
 #include <stdexcept>
@@ -16,6 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/mesh/ghost_layer.hpp"
+#include "libshell/mesh/gmsh_disc_mesh.hpp"
+#include "libshell/mesh/msh_io.hpp"
+#include "libshell/mesh/obj_io.hpp"
+#include "libshell/mesh/ring_disc_mesh.hpp"
 
 namespace growshell {
 namespace {
@@ -40,6 +46,10 @@ template <class Enum>
 using NameTable = std::initializer_list<std::pair<Enum, std::string_view>>;
 
 const NameTable<SceneShape> kShapeNames = {{SceneShape::Disc, "disc"}, {SceneShape::Ring, "ring"}};
+const NameTable<MeshFamily> kMeshFamilyNames = {{MeshFamily::Lattice, "lattice"},
+                                                {MeshFamily::Rings, "rings"},
+                                                {MeshFamily::Gmsh, "gmsh"},
+                                                {MeshFamily::File, "file"}};
 const NameTable<GrowthLaw> kLawNames = {{GrowthLaw::Circumferential, "circumferential"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
@@ -192,6 +202,9 @@ const Field kFields[] = {
   {"growth.center",
    [](Scene& s, const Json& v, const std::string& k) { s.growth.center = read_point2(v, k); },
    [](const Scene& s) { return Json::array({s.growth.center.x(), s.growth.center.y()}); }},
+  {"mesh.family",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.family = read_enum(v, k, kMeshFamilyNames); },
+   [](const Scene& s) { return Json(enum_name(kMeshFamilyNames, s.mesh.family)); }, true},
   {"mesh.rings",
    [](Scene& s, const Json& v, const std::string& k) { s.mesh.rings = read_int(v, k); },
    [](const Scene& s) { return Json(s.mesh.rings); }},
@@ -204,6 +217,15 @@ const Field kFields[] = {
   {"mesh.min_spacing",
    [](Scene& s, const Json& v, const std::string& k) { s.mesh.min_spacing = read_number_or_auto(v, k); },
    [](const Scene& s) { return write_number_or_auto(s.mesh.min_spacing); }},
+  {"mesh.size_slope",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.size_slope = read_number(v, k); },
+   [](const Scene& s) { return Json(s.mesh.size_slope); }},
+  {"mesh.size_max",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.size_max = read_number_or_auto(v, k); },
+   [](const Scene& s) { return write_number_or_auto(s.mesh.size_max); }},
+  {"mesh.file",
+   [](Scene& s, const Json& v, const std::string& k) { s.mesh.file = read_string(v, k); },
+   [](const Scene& s) { return Json(s.mesh.file); }, true},
   {"mesh.quadrature_degree",
    [](Scene& s, const Json& v, const std::string& k) { s.mesh.quadrature_degree = read_int(v, k); },
    [](const Scene& s) { return Json(s.mesh.quadrature_degree); }},
@@ -359,6 +381,15 @@ void validate_scene(const Scene& scene) {
   if (!(std::isfinite(m.grading_exponent) && m.grading_exponent >= 1.0))
     fail("mesh.grading_exponent = " + format(m.grading_exponent) + " must be finite and >= 1");
   if (m.min_spacing) require_nonnegative(*m.min_spacing, "mesh.min_spacing");
+  require_positive(m.size_slope, "mesh.size_slope");
+  if (m.size_max) require_positive(*m.size_max, "mesh.size_max");
+  if (m.family == MeshFamily::Rings && g.shape == SceneShape::Ring)
+    fail("mesh.family = rings makes discs only; a ring (geometry.shape = ring) takes lattice, "
+         "gmsh or file");
+  if (m.family == MeshFamily::File && m.file.empty())
+    fail("mesh.family = file needs mesh.file, the path of a .msh or .obj mesh");
+  if (m.family != MeshFamily::File && !m.file.empty())
+    fail("mesh.file = '" + m.file + "' is read only with mesh.family = file");
   if (m.quadrature_degree < 1 || m.quadrature_degree > 6)
     fail("mesh.quadrature_degree = " + std::to_string(m.quadrature_degree) + " must be in {1, ..., 6}");
 
@@ -487,18 +518,49 @@ ThicknessField scene_thickness_field(const Scene& scene) {
 
 TriangleMesh scene_mesh(const Scene& scene) {
   validate_scene(scene);
-  if (scene.geometry.shape == SceneShape::Ring) {
+  const SceneMesh& m = scene.mesh;
+  const bool ring = scene.geometry.shape == SceneShape::Ring;
+  const double size_max = m.size_max.value_or(std::numeric_limits<double>::infinity());
+  switch (m.family) {
+    case MeshFamily::Lattice:
+      break;
+    case MeshFamily::Rings: {
+      RingDiscMeshOptions options;
+      options.radius = scene.geometry.radius;
+      options.size_slope = m.size_slope;
+      options.size_floor = resolved_min_spacing(scene);
+      options.size_max = size_max;
+      return make_ring_disc_mesh(options);
+    }
+    case MeshFamily::Gmsh: {
+      GmshDiscMeshOptions options;
+      options.radius = scene.geometry.radius;
+      options.inner_radius = ring ? scene.geometry.inner_radius : 0.0;
+      options.size_slope = m.size_slope;
+      options.size_floor = resolved_min_spacing(scene);
+      options.size_max = size_max;
+      return make_gmsh_disc_mesh(options);
+    }
+    case MeshFamily::File: {
+      const std::filesystem::path path(m.file);
+      if (path.extension() == ".msh") return add_ghost_layer(read_msh(m.file));
+      if (path.extension() == ".obj") return read_obj(m.file);
+      throw std::invalid_argument("mesh.file = '" + m.file +
+                                  "': the mesh format is told by the extension, .msh or .obj");
+    }
+  }
+  if (ring) {
     AnnulusMeshOptions options;
     options.inner_radius = scene.geometry.inner_radius;
     options.outer_radius = scene.geometry.radius;
-    options.radial_layers = scene.mesh.radial_layers;
+    options.radial_layers = m.radial_layers;
     options.center = Eigen::Vector2d::Zero();
     return make_annulus_mesh(options);
   }
   DiscMeshOptions options;
   options.radius = scene.geometry.radius;
-  options.rings = scene.mesh.rings;
-  options.grading_exponent = scene.mesh.grading_exponent;
+  options.rings = m.rings;
+  options.grading_exponent = m.grading_exponent;
   options.min_spacing = resolved_min_spacing(scene);
   options.center = Eigen::Vector2d::Zero();
   options.layout = DiscLayout::Conformal;

@@ -68,8 +68,28 @@ struct SceneGrowth {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
 };
 
+/// Which family of control meshes a scene is discretised with.
+enum class MeshFamily {
+  /// Structured meshes with every interior vertex regular: the hexagonal lattice mapped
+  /// conformally onto a disc (rings, grading_exponent, min_spacing), or the log-polar grid of a
+  /// ring (radial_layers).
+  Lattice,
+  /// A disc of concentric rings graded towards the centre with the symmetry of the two-fold
+  /// cone (both mirrors and the quarter turn), make_ring_disc_mesh: element size
+  /// clamp(size_slope r, min_spacing, size_max). Disc only.
+  Rings,
+  /// An unstructured mesh from Gmsh with the same size field (make_gmsh_disc_mesh): shares no
+  /// structure with the other families. Disc or ring.
+  Gmsh,
+  /// The mesh in `file`: a Gmsh .msh sheet (a ghost layer is added) or an OBJ control mesh
+  /// whose outermost layer is already the ghost layer.
+  File,
+};
+
 /// Control mesh and quadrature.
 struct SceneMesh {
+  /// The mesh family; the keys below say which family they belong to.
+  MeshFamily family = MeshFamily::Lattice;
   /// Number of real rings of the disc mesh (disc only), >= 2.
   int rings = 24;
   /// Number of element layers between the inner and outer rim (ring only), >= 1.
@@ -81,6 +101,14 @@ struct SceneMesh {
   /// file) means half the thickness at the centre, resolved by resolved_min_spacing, so that
   /// it follows a thickness override.
   std::optional<double> min_spacing;
+  /// Element size per unit distance from the centre (rings and gmsh families), > 0: the size
+  /// is clamp(size_slope r, min_spacing, size_max).
+  double size_slope = 0.25;
+  /// Largest element size (m) of the rings and gmsh families, > 0; unset means no cap.
+  std::optional<double> size_max;
+  /// Mesh file of the file family (.msh or .obj); relative paths are relative to the working
+  /// directory.
+  std::string file;
   /// Polynomial exactness of the triangle quadrature rule, in {1, ..., 6}.
   int quadrature_degree = 2;
 };
@@ -200,9 +228,13 @@ double resolved_exclusion_radius(const Scene& scene);
 /// Thickness field over reference positions X (m): thickness_at_radius at r = |(X_x, X_y)|.
 ThicknessField scene_thickness_field(const Scene& scene);
 
-/// Validates the scene and builds its control mesh: make_disc_mesh (conformal layout,
-/// rings, grading, resolved_min_spacing) for a disc, make_annulus_mesh (radial_layers) for a
-/// ring, both centred at the origin.
+/// Validates the scene and builds its control mesh, centred at the origin: for the lattice
+/// family make_disc_mesh (conformal layout, rings, grading, resolved_min_spacing) for a disc and
+/// make_annulus_mesh (radial_layers) for a ring; make_ring_disc_mesh or make_gmsh_disc_mesh
+/// (size_slope, resolved_min_spacing as the size floor, size_max) for the rings and gmsh
+/// families; the file family reads mesh.file (a .msh sheet gets a ghost layer). Throws
+/// std::invalid_argument naming the key for a family the shape has not, and MeshError for an
+/// unreadable or invalid mesh file.
 TriangleMesh scene_mesh(const Scene& scene);
 
 /// Validates the scene and returns the ShellModel settings it declares: material,

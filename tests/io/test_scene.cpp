@@ -16,6 +16,9 @@
 
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/mesh/gmsh_disc_mesh.hpp"
+#include "libshell/mesh/mesh_topology.hpp"
+#include "libshell/mesh/vertex_symmetry.hpp"
 
 namespace growshell {
 namespace {
@@ -154,6 +157,54 @@ TEST(Scene, ExclusionRadiusFollowsAThicknessOverrideAndMustReachTheContactDistan
             "physics.contact_exclusion_radius = -1 must be finite and > 0");
   apply_override(s, "physics.contact_exclusion_radius", "auto");
   EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.04);
+}
+
+TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
+  Scene s = default_scene();
+  s.thickness = ConstantThickness{0.04};
+  s.mesh.family = MeshFamily::Rings;
+  const TriangleMesh rings = scene_mesh(s);
+  // The rings family has the quarter turn, faces included; its size floor is h / 2 = 0.02.
+  EXPECT_NO_THROW(check_maps_faces_onto_faces(MeshTopology(rings), quarter_turn_symmetry(rings.vertices, 1e-9)));
+  s.mesh.family = MeshFamily::Gmsh;
+  s.mesh.size_slope = 0.3;
+  const TriangleMesh gmsh = scene_mesh(s);
+  EXPECT_GT(gmsh.faces.rows(), 100);
+  EXPECT_NE(gmsh.vertices.rows(), rings.vertices.rows());
+  // A file: the Gmsh sheet written as .msh and read back gets the same ghost layer.
+  const std::string msh = (dir_ / "disc.msh").string();
+  GmshDiscMeshOptions o;
+  o.size_slope = 0.3;
+  o.size_floor = 0.02;
+  o.msh_file = msh;
+  make_gmsh_disc_sheet(o);
+  s.mesh.family = MeshFamily::File;
+  s.mesh.file = msh;
+  const TriangleMesh from_file = scene_mesh(s);
+  EXPECT_EQ(from_file.faces, gmsh.faces);
+  EXPECT_LT((from_file.vertices - gmsh.vertices).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Scene, MeshFamilyErrorsNameTheKey) {
+  Scene s = default_scene();
+  s.geometry.shape = SceneShape::Ring;
+  s.mesh.family = MeshFamily::Rings;
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("mesh.family = rings makes discs only"),
+            std::string::npos);
+  s = default_scene();
+  s.mesh.family = MeshFamily::File;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "mesh.family = file needs mesh.file, the path of a .msh or .obj mesh");
+  s.mesh.file = "mesh.stl";
+  EXPECT_NE(error_of([&] { scene_mesh(s); }).find("the mesh format is told by the extension"),
+            std::string::npos);
+  s = default_scene();
+  s.mesh.file = "disc.msh";
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "mesh.file = 'disc.msh' is read only with mesh.family = file");
+  s = default_scene();
+  EXPECT_EQ(error_of([&] { apply_override(s, "mesh.family", "hexagon"); }),
+            "mesh.family = \"hexagon\" must be one of \"lattice\", \"rings\", \"gmsh\", \"file\"");
 }
 
 TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {

@@ -84,6 +84,23 @@ TEST(VertexSymmetry, AVertexSetWithoutTheSymmetryIsNamed) {
                std::invalid_argument);
 }
 
+TEST(VertexSymmetry, SquareGridSplitAlongOneDiagonalHasTheQuarterTurnOnlyInItsVertices) {
+  StripMeshOptions o;
+  o.length = 1.0;
+  o.width = 1.0;
+  o.cells_x = 6;
+  o.cells_y = 6;
+  TriangleMesh mesh = make_strip_mesh(o);
+  mesh.vertices.col(0).array() -= 0.5;  // the grid about the origin
+  const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-9);
+  try {
+    check_maps_faces_onto_faces(MeshTopology(mesh), q);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a face"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VertexSymmetry, QuarterTurnIsAGeneralLinearSymmetry) {
   // The annulus (36 vertices per ring) has the quarter turn, faces included; the hexagonal
   // disc (60-degree symmetry) does not.
