@@ -5,7 +5,7 @@
 /// In growshell a TriangleMesh is the *control mesh* of a Loop subdivision surface.
 /// Convention (see docs/subdivision.md): the outermost layer of the control mesh is a
 /// ghost layer. Elements are exactly the triangles whose three vertices are interior
-/// vertices of valence 6; every other triangle only supplies control points.
+/// vertices (any valence 3..12); every other triangle only supplies control points.
 
 #include <Eigen/Core>
 
