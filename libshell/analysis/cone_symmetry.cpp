@@ -418,28 +418,29 @@ ConeSymmetry measure_cone_symmetry(const ShellModel& model, const Eigen::Ref<con
       turned.row(k) = y(quarter_turned(reference.row(k).transpose())).transpose();
     out.s4 = s4_symmetry_defect(reference, current, turned, radius);
   }
-  // The apex: the sheet vertex at the centre, or (a ring) the centroid of the inner rim.
+  // The apex: the state at the growth centre for a disc, the centroid of the inner rim for a
+  // ring. Disc or ring is told by the rim (sheet vertices next to the ghost layer): a ring has
+  // rim vertices well inside R. (Not by a vertex sitting exactly at the centre: on a mesh with
+  // extraordinary vertices the centre vertex's limit position is off the centre.)
   const Eigen::MatrixX3d limit = model.limit_positions(x);
   const auto& sheet = model.sheet_vertices();
-  Eigen::Index centre_vertex = 0;
-  reference.rowwise().norm().minCoeff(&centre_vertex);
-  Eigen::Vector3d apex = limit.row(centre_vertex).transpose();
+  std::vector<char> in_sheet(static_cast<std::size_t>(model.topology().num_vertices()), 0);
+  for (int v : sheet) in_sheet[static_cast<std::size_t>(v)] = 1;
+  std::vector<Eigen::Index> rim;
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
+  for (std::size_t k = 0; k < sheet.size(); ++k) {
+    bool on_rim = false;
+    for (int u : model.topology().one_ring(sheet[k])) on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
+    if (!on_rim) continue;
+    const double r = reference.row(static_cast<Eigen::Index>(k)).norm();
+    r_min = std::min(r_min, r);
+    r_max = std::max(r_max, r);
+    rim.push_back(static_cast<Eigen::Index>(k));
+  }
+  Eigen::Vector3d apex = y(Eigen::Vector3d::Zero());
   FoldChordOptions ring_options = options;
-  const double inner = reference.row(centre_vertex).norm();
-  if (inner > 1e-9 * radius) {
-    std::vector<char> in_sheet(static_cast<std::size_t>(model.topology().num_vertices()), 0);
-    for (int v : sheet) in_sheet[static_cast<std::size_t>(v)] = 1;
-    std::vector<Eigen::Index> rim;
-    double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
-    for (std::size_t k = 0; k < sheet.size(); ++k) {
-      bool on_rim = false;
-      for (int u : model.topology().one_ring(sheet[k])) on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
-      if (!on_rim) continue;
-      const double r = reference.row(static_cast<Eigen::Index>(k)).norm();
-      r_min = std::min(r_min, r);
-      r_max = std::max(r_max, r);
-      rim.push_back(static_cast<Eigen::Index>(k));
-    }
+  if (r_min < 0.9 * r_max) {
+    const double inner = r_min;
     apex.setZero();
     int count = 0;
     for (Eigen::Index k : rim)

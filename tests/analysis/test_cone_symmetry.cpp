@@ -11,6 +11,7 @@
 
 #include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/mesh/gmsh_disc_mesh.hpp"
 
 namespace growshell {
 namespace {
@@ -251,6 +252,21 @@ TEST(ConeSymmetry, HexagonalDiscRefusesTheVertexMapAndInterpolates) {
   EXPECT_GT(b.s4.defect, 3.0 * s.s4.defect);
   EXPECT_LT(b.chords.chord_up, s.chords.chord_up - 0.01);
   EXPECT_GT(b.chords.chord_down, s.chords.chord_down + 0.01);
+}
+
+TEST(ConeSymmetry, UnstructuredDiscTakesTheApexAtTheCentre) {
+  // On a Gmsh disc the centre vertex's limit position is off the centre (its ring is
+  // irregular), which once made the disc look like a ring and put the apex on the rim: chords
+  // 0.89 instead of 2 on a flat disc.
+  GmshDiscMeshOptions o;
+  o.size_slope = 0.15;
+  o.size_floor = 0.02;
+  ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
+  const ConeSymmetry s = measure_cone_symmetry(model, cone_state(model, 0.4, 0.0));
+  EXPECT_FALSE(s.vertex_map);
+  // Interpolation and the irregular limit surface: measured 2.0e-3 for the chords.
+  EXPECT_NEAR(s.chords.chord_up, exact_chord(0.4), 1e-2);
+  EXPECT_NEAR(s.chords.chord_down, exact_chord(0.4), 1e-2);
 }
 
 TEST(ConeSymmetry, RingWithQuarterTurnUsesTheVertexMap) {
