@@ -13,35 +13,14 @@
 #include "libshell/mesh/mesh_error.hpp"
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/mesh_validation.hpp"
+#include "tests/support/mesh_checks.hpp"
 
 namespace growshell {
 namespace {
 
-template <class F>
-std::string mesh_error_message(F&& f) {
-  try {
-    f();
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "<no MeshError thrown>";
-}
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
+using namespace test_support;
 
 int ring_start(int k) { return k == 0 ? 0 : 1 + 3 * k * (k - 1); }
-
-int count_elements(const MeshTopology& topo) {
-  int count = 0;
-  for (int f = 0; f < topo.num_faces(); ++f) {
-    const auto& t = topo.face(f);
-    if (std::none_of(t.begin(), t.end(), [&](int v) { return topo.is_boundary_vertex(v); })) {
-      ++count;
-    }
-  }
-  return count;
-}
 
 void expect_interior_valence_six(const MeshTopology& topo) {
   for (int v = 0; v < topo.num_vertices(); ++v) {

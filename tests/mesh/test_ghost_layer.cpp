@@ -19,22 +19,12 @@
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/ring_disc_mesh.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
+#include "tests/support/mesh_checks.hpp"
 
 namespace growshell {
 namespace {
 
-template <class F>
-std::string mesh_error_message(F&& f) {
-  try {
-    f();
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "<no MeshError thrown>";
-}
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
+using namespace test_support;
 
 double signed_area(const TriangleMesh& m, int f) {
   const Eigen::Vector2d a = m.vertices.row(m.faces(f, 0)).head<2>();

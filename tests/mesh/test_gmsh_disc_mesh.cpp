@@ -18,51 +18,18 @@
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/msh_io.hpp"
 #include "libshell/mesh/radial_size.hpp"
+#include "tests/support/mesh_checks.hpp"
 
 namespace growshell {
 namespace {
+
+using namespace test_support;
 
 GmshDiscMeshOptions cone_options(double size_floor) {
   GmshDiscMeshOptions o;
   o.size_slope = 0.25;
   o.size_floor = size_floor;
   return o;
-}
-
-struct ElementStats {
-  double min_angle_deg = 180.0;
-  double min_size_ratio = 1e300;  // longest edge / s(r at the centroid)
-  double max_size_ratio = 0.0;
-  double mean_size_ratio = 0.0;
-};
-
-ElementStats element_stats(const TriangleMesh& sheet, const RadialSize& size) {
-  ElementStats st;
-  for (Eigen::Index f = 0; f < sheet.faces.rows(); ++f) {
-    Eigen::Vector2d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = sheet.vertices.row(sheet.faces(f, k)).head<2>();
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d a = p[(k + 1) % 3] - p[k];
-      const Eigen::Vector2d b = p[(k + 2) % 3] - p[k];
-      const double angle = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
-      st.min_angle_deg = std::min(st.min_angle_deg, angle * 180.0 / std::numbers::pi);
-      longest = std::max(longest, a.norm());
-    }
-    const double ratio = longest / radial_size(size, ((p[0] + p[1] + p[2]) / 3.0).norm());
-    st.min_size_ratio = std::min(st.min_size_ratio, ratio);
-    st.max_size_ratio = std::max(st.max_size_ratio, ratio);
-    st.mean_size_ratio += ratio / static_cast<double>(sheet.faces.rows());
-  }
-  return st;
-}
-
-std::map<int, int> interior_valence_histogram(const TriangleMesh& mesh) {
-  const MeshTopology topo(mesh);
-  std::map<int, int> h;
-  for (int v = 0; v < topo.num_vertices(); ++v)
-    if (!topo.is_boundary_vertex(v)) ++h[topo.valence(v)];
-  return h;
 }
 
 /// Checks of every ghosted Gmsh sheet: control mesh, sheet = elements, boundary on circles.
@@ -84,12 +51,7 @@ void expect_valid(const GmshDiscMeshOptions& o, const TriangleMesh& sheet,
     }
   }
   EXPECT_GT(rim, 0);
-  int elements = 0;
-  for (int f = 0; f < topo.num_faces(); ++f) {
-    const auto& t = topo.face(f);
-    elements += std::none_of(t.begin(), t.end(), [&](int v) { return topo.is_boundary_vertex(v); });
-  }
-  EXPECT_EQ(elements, sheet.faces.rows());
+  EXPECT_EQ(count_elements(topo), sheet.faces.rows());
 }
 
 // Measured with Debian's Gmsh 4.8.4 for R = 1, c = 0.25 (Frontal-Delaunay, seed 1):
@@ -119,7 +81,7 @@ TEST(GmshDiscMesh, GradedDiscsForTheConeSettings) {
     EXPECT_EQ(sheet.vertices.row(0).norm(), 0.0);  // the embedded centre has the lowest tag
     EXPECT_GT(sheet.vertices.rows(), 0.9 * e.sheet_vertices);
     EXPECT_LT(sheet.vertices.rows(), 1.1 * e.sheet_vertices);
-    const ElementStats st = element_stats(sheet, {o.size_slope, o.size_floor, o.size_max});
+    const ElementStats st = element_stats(sheet, sheet.faces.rows(), {o.size_slope, o.size_floor, o.size_max});
     EXPECT_GT(st.min_angle_deg, 31.5);
     EXPECT_GT(st.min_size_ratio, 0.6);
     EXPECT_LT(st.max_size_ratio, 1.6);
@@ -157,7 +119,7 @@ TEST(GmshDiscMesh, AnnulusHasBothCirclesAsBoundary) {
   EXPECT_LT(inner, 32);
   // Measured (Gmsh 4.8.4, Delaunay): 251 vertices, min angle 31.87 degrees, longest edge in
   // [0.727, 1.397] s(r).
-  const ElementStats st = element_stats(sheet, {o.size_slope, o.size_floor, o.size_max});
+  const ElementStats st = element_stats(sheet, sheet.faces.rows(), {o.size_slope, o.size_floor, o.size_max});
   EXPECT_GT(st.min_angle_deg, 30.0);
   EXPECT_GT(st.min_size_ratio, 0.6);
   EXPECT_LT(st.max_size_ratio, 1.6);

@@ -8,22 +8,12 @@
 
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/mesh_error.hpp"
+#include "tests/support/mesh_checks.hpp"
 
 namespace growshell {
 namespace {
 
-template <class F>
-std::string mesh_error_message(F&& f) {
-  try {
-    f();
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "<no MeshError thrown>";
-}
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
+using namespace test_support;
 
 Eigen::MatrixX3i faces_of(std::initializer_list<std::array<int, 3>> list) {
   Eigen::MatrixX3i faces(static_cast<Eigen::Index>(list.size()), 3);

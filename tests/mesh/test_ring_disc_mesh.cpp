@@ -16,9 +16,12 @@
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/radial_size.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
+#include "tests/support/mesh_checks.hpp"
 
 namespace growshell {
 namespace {
+
+using namespace test_support;
 
 RingDiscMeshOptions cone_options(double size_floor) {
   RingDiscMeshOptions o;
@@ -26,43 +29,6 @@ RingDiscMeshOptions cone_options(double size_floor) {
   o.size_slope = 0.25;
   o.size_floor = size_floor;
   return o;
-}
-
-/// Statistics of the elements (the sheet's faces, rows 0..num_elements-1 of the mesh).
-struct ElementStats {
-  double min_angle_deg = 180.0;
-  double min_size_ratio = 1e300;  // longest edge / s(r at the centroid)
-  double max_size_ratio = 0.0;
-};
-
-ElementStats element_stats(const TriangleMesh& mesh, Eigen::Index num_elements,
-                           const RadialSize& size) {
-  ElementStats st;
-  for (Eigen::Index f = 0; f < num_elements; ++f) {
-    Eigen::Vector2d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = mesh.vertices.row(mesh.faces(f, k)).head<2>();
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d a = p[(k + 1) % 3] - p[k];
-      const Eigen::Vector2d b = p[(k + 2) % 3] - p[k];
-      const double angle = std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
-      st.min_angle_deg = std::min(st.min_angle_deg, angle * 180.0 / std::numbers::pi);
-      longest = std::max(longest, a.norm());
-    }
-    const double r = ((p[0] + p[1] + p[2]) / 3.0).norm();
-    const double ratio = longest / radial_size(size, r);
-    st.min_size_ratio = std::min(st.min_size_ratio, ratio);
-    st.max_size_ratio = std::max(st.max_size_ratio, ratio);
-  }
-  return st;
-}
-
-std::map<int, int> interior_valence_histogram(const TriangleMesh& mesh) {
-  const MeshTopology topo(mesh);
-  std::map<int, int> h;
-  for (int v = 0; v < topo.num_vertices(); ++v)
-    if (!topo.is_boundary_vertex(v)) ++h[topo.valence(v)];
-  return h;
 }
 
 TEST(RingDiscMesh, RingsFollowTheSizeFieldAndEndAtTheRim) {
@@ -152,12 +118,7 @@ TEST(RingDiscMesh, IsAControlMeshWithTheRimOnTheCircle) {
     EXPECT_TRUE(topo.is_boundary_vertex(static_cast<int>(g)));
     EXPECT_GT(mesh.vertices.row(g).norm(), 1.0);
   }
-  int elements = 0;
-  for (int f = 0; f < topo.num_faces(); ++f) {
-    const auto& t = topo.face(f);
-    elements += std::none_of(t.begin(), t.end(), [&](int v) { return topo.is_boundary_vertex(v); });
-  }
-  EXPECT_EQ(elements, sheet.faces.rows());
+  EXPECT_EQ(count_elements(topo), sheet.faces.rows());
 }
 
 // Measured for R = 1, c = 0.25 (these numbers are the report's):
