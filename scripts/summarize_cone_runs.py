@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Table of the traces made by scripts/symmetric_cone_runs.sh (Markdown, to stdout).
 
-For every run directory DIR/NAME with a branch.csv: mesh family and size slope (from NAME),
+For every run directory DIR/NAME with a branch.csv: thickness, mesh family and size slope (from NAME),
 elements and unknowns (from NAME.log), the first branch point, phi_e^max and E_b-hat there,
 first contact (gap = h anywhere), mid-surface contact, the largest S4 defect and the first
 negative eigenvalue between phi_e = 0.1 and first contact (or the end), the symmetry_lost event
@@ -41,6 +41,7 @@ def summarize(run: pathlib.Path):
         nearest = min(rows, key=lambda r: abs(float(r["phi_e"]) - eb["phi_e"]))
         eb_value = float(nearest["Eb_hat"])
     return {
+        "h": "0." + match.group(1) if match else "",
         "family": match.group(2) if match else run.name,
         "slope": match.group(3) if match else "",
         "elements": size.group(1) if size else "",
@@ -65,15 +66,15 @@ def main():
     runs = sorted(p for p in top.iterdir() if (p / "branch.csv").exists())
     if not runs:
         sys.exit(f"summarize_cone_runs.py: no run with a branch.csv under {top}")
-    print("| mesh | size_slope | elements | unknowns | first branch point | φe^max | Ê_b^max | "
+    print("| h | mesh | size_slope | elements | unknowns | first branch point | φe^max | Ê_b^max | "
           "gap = h | mid-surface contact | max S4 defect before contact | first negative "
           "eigenvalue before contact | symmetry_lost | last φe | wall (s) |")
-    print("|" + "---|" * 14)
+    print("|" + "---|" * 15)
     for run in runs:
         s = summarize(run)
         wall = "running" if s["wall"] is None else f"{s['wall']:.0f}"
         defect = "—" if s["defect"] is None else f"{s['defect']:.1e}"
-        print(f"| {s['family']} | {s['slope']} | {s['elements']} | {s['unknowns']} | "
+        print(f"| {s['h']} | {s['family']} | {s['slope']} | {s['elements']} | {s['unknowns']} | "
               f"{fmt(s['branch'], 6)} | {fmt(s['phi_max'], 4)} | {fmt(s['eb_hat'], 4)} | "
               f"{fmt(s['contact'], 4)} | {fmt(s['midsurface'], 4)} | {defect} | "
               f"{fmt(s['unstable'], 3) if s['unstable'] is not None else 'none'} | "
