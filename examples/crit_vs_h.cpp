@@ -115,7 +115,7 @@ int run(int argc, char** argv) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
   if (base.geometry.shape != SceneShape::Disc)
     throw std::invalid_argument("crit_vs_h traces discs (geometry.shape = disc)");
-  if (!rings.empty()) apply_override(base, "mesh.rings", rings);
+  examples::apply_rings_option(base, rings);
   validate_scene(base);
 
   std::filesystem::create_directories(out_dir);

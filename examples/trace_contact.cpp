@@ -128,8 +128,7 @@ int run(int argc, char** argv) {
   }
   const std::string h_text = cl.text("--h", "");
   if (!h_text.empty()) apply_override(scene, "thickness", h_text);
-  const std::string rings = cl.text("--rings", "");
-  if (!rings.empty()) apply_override(scene, "mesh.rings", rings);
+  examples::apply_rings_option(scene, cl.text("--rings", ""));
   const std::string exclusion_text = cl.text("--exclusion-radius", "");
   if (!exclusion_text.empty())
     apply_override(scene, "physics.contact_exclusion_radius", exclusion_text);

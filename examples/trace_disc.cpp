@@ -127,10 +127,7 @@ int run(int argc, char** argv) {
   set("--phi-max", "continuation.phi_max");
   set("--min-step", "continuation.min_step");
   set("--out", "output.directory");
-  const std::string rings = cl.text("--rings", "");
-  if (!rings.empty())
-    apply_override(scene, scene.geometry.shape == SceneShape::Ring ? "mesh.radial_layers" : "mesh.rings",
-                   rings);
+  examples::apply_rings_option(scene, cl.text("--rings", ""));
   if (cl.integer("--backward", 0) != 0) apply_override(scene, "continuation.direction", "backward");
   const bool through_contact = cl.integer("--through-contact", 0) != 0;
   const std::string resume = cl.text("--resume", "");

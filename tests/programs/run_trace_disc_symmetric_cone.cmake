@@ -51,4 +51,13 @@ endif()
 if(NOT events MATCHES "\"kind\": \"contact\", \"phi_e\": 5\\.[5-9]")
   message(FATAL_ERROR "no first contact between phi_e = 5.5 and 6:\n${events}")
 endif()
+# --rings is the lattice family's resolution: with the rings family it is refused by name.
+execute_process(COMMAND "${PROGRAM}" "${OUT}/scene.json" --rings 6 --out "${OUT}/bad"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "--rings 6 sets the resolution of mesh.family = lattice")
+  message(FATAL_ERROR "--rings with the rings family was not refused by name (${rc}): ${err}")
+endif()
+if(EXISTS "${OUT}/bad")
+  message(FATAL_ERROR "the refused run wrote ${OUT}/bad")
+endif()
 message(STATUS "symmetric cone: ${checked} samples before first contact, largest S4 defect ${worst}")
