@@ -214,7 +214,8 @@ void print(const std::string& family, const std::vector<Level>& levels) {
 // Measured (docs/verification.md has the tables), for every n in {4, 5, 7, 8} on both surfaces:
 //  - position: max and RMS fall as h^2 (rates 1.99..2.00) over all elements, the n elements at
 //    the centre included.
-//  - normal: max over all elements falls as h (rate 1.00: the worst point is a quadrature point
+//  - normal: max over all elements falls as h (rate 1.00..1.01: the worst point is a quadrature
+//  point
 //    of an element at the centre), RMS as h^2 (sphere 1.99..2.01, cylinder 1.75..1.88, the
 //    slow part of the layout near the centre); away from the centre as h^2 (last rate 1.98..2.06).
 //  - H: the max over all elements is the same at every level (rates -0.01..0.01): the n
@@ -222,14 +223,14 @@ void print(const std::string& family, const std::vector<Level>& levels) {
 //    is O(1) (Loop's curvature at an extraordinary vertex is not the sampled surface's:
 //    sphere 0.42, 0.098, 0.041, 0.062 and cylinder 0.42, 0.14, 0.13, 0.22 for n = 4, 5, 7, 8,
 //    against |H| = 0.5). The elements of the next rings share that (regular elements'
-//    max 0.037 .. 0.080, constant as well). The RMS therefore falls as h (rate 1.00: an O(1)
+//    max 0.010 .. 0.080, constant as well). The RMS therefore falls as h (rate 0.99..1.00: an O(1)
 //    error on an area ~h^2). Outside 0.2 the max falls at rate 2 once 0.2 is several lattice
-//    steps from the centre: rates 0.89..1.46, 1.64..1.88, 1.99..2.15 for the three steps
+//    steps from the centre: rates 0.89..1.56, 1.64..1.88, 1.99..2.15 for the three steps
 //    (average 1.54..1.81); the RMS there 1.63..1.87, 1.93..2.03, 2.02..2.03.
 struct PolygonCase {
   int valence;
   Surface surface;
-  double max_H;  // measured max |H error| over all elements, finest level
+  double max_H;  // measured max |H error| over all elements at h = 1/64 (Loop's rules)
 };
 class IrregularGeometryPolygonDisc : public ::testing::TestWithParam<PolygonCase> {};
 
@@ -258,9 +259,14 @@ TEST_P(IrregularGeometryPolygonDisc, ErrorsFallAtMeasuredRates) {
   EXPECT_GT(rate(before.away.rms_H, fine.away.rms_H), 1.9);
   EXPECT_GT(rate(coarse.away.normal, fine.away.normal) / steps, 1.75);
   EXPECT_GT(rate(coarse.away.H, fine.away.H) / steps, 1.45);
-  // Near the centre: bounded (within 10 % of the measured value) and not converging.
-  EXPECT_LT(fine.all.H, 1.1 * max_H);
-  EXPECT_GT(fine.all.H, 0.9 * coarse.all.H);
+  // Near the centre the max does not converge: it is the same O(1) value at every level,
+  // asserted to 5 % of the value measured at h = 1/64 (the levels differ by < 1.5 %). The
+  // band is two-sided on purpose: the rates above hold for any stationary C1 scheme, and
+  // with a wrong extraordinary-vertex rule (tried in a scratch build: Loop's beta times 1.2,
+  // or Warren's 3 / (8 n)) every rate assertion above still passes, but this value moves by
+  // 23 % to 170 % (for n = 4, 5 with beta times 1.2 it even falls, 0.42 -> 0.16 and
+  // 0.098 -> 0.048).
+  for (const Level& l : levels) EXPECT_NEAR(l.all.H, max_H, 0.05 * max_H) << "h = " << l.h;
 }
 
 INSTANTIATE_TEST_SUITE_P(IrregularGeometry, IrregularGeometryPolygonDisc,
