@@ -142,10 +142,11 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("--symmetry-threshold must be finite and > 0");
   validate_scene(scene);
 
+  // The model first: a mesh that cannot be built (e.g. a missing mesh.file) writes nothing.
+  ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const std::string out_dir = scene.output.directory;
   std::filesystem::create_directories(out_dir + "/states");
   std::ofstream(out_dir + "/scene.json") << scene_to_json(scene);
-  ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   const double contact_distance = scene.physics.contact_distance.value_or(h);
   std::printf("# %s R = %g%s, h = %g, mode %d, %lld elements, %lld unknowns\n",

@@ -5,7 +5,7 @@ For every run directory DIR/NAME with a branch.csv: thickness, mesh family and s
 elements and unknowns (from NAME.log), the first branch point, phi_e^max and E_b-hat there,
 first contact (gap = h anywhere), mid-surface contact, the largest S4 defect and the first
 negative eigenvalue between phi_e = 0.1 and first contact (or the end), the symmetry_lost event
-and the wall time. usage: scripts/summarize_cone_runs.py DIR
+and the wall time ("unfinished": no cost.json, the run was stopped or is still going). usage: scripts/summarize_cone_runs.py DIR
 """
 import csv
 import json
@@ -72,7 +72,7 @@ def main():
     print("|" + "---|" * 15)
     for run in runs:
         s = summarize(run)
-        wall = "running" if s["wall"] is None else f"{s['wall']:.0f}"
+        wall = "unfinished" if s["wall"] is None else f"{s['wall']:.0f}"
         defect = "—" if s["defect"] is None else f"{s['defect']:.1e}"
         print(f"| {s['h']} | {s['family']} | {s['slope']} | {s['elements']} | {s['unknowns']} | "
               f"{fmt(s['branch'], 6)} | {fmt(s['phi_max'], 4)} | {fmt(s['eb_hat'], 4)} | "

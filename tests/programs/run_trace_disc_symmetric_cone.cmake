@@ -60,4 +60,15 @@ endif()
 if(EXISTS "${OUT}/bad")
   message(FATAL_ERROR "the refused run wrote ${OUT}/bad")
 endif()
+# A mesh file that does not exist is named, and nothing is written.
+file(WRITE "${OUT}/missing_mesh.json"
+     "{\"mesh\": {\"family\": \"file\", \"file\": \"${OUT}/no_such_mesh.msh\"}}\n")
+execute_process(COMMAND "${PROGRAM}" "${OUT}/missing_mesh.json" --out "${OUT}/missing"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "no_such_mesh.msh")
+  message(FATAL_ERROR "a missing mesh file was not named (${rc}): ${err}")
+endif()
+if(EXISTS "${OUT}/missing")
+  message(FATAL_ERROR "the run with a missing mesh file wrote ${OUT}/missing")
+endif()
 message(STATUS "symmetric cone: ${checked} samples before first contact, largest S4 defect ${worst}")
