@@ -3,7 +3,7 @@
 # stability up to first contact (gap = h), as the h -> 0 cone does (docs/validation.md, "The
 # symmetric cone"). On the hexagonal lattice disc the same trace loses S4 (defect 1e-3 at
 # phi_e = 4.3) and stability (6.14) before contact, which is what this test guards against.
-# Variables: PROGRAM, OUT.
+# Variables: PROGRAM (trace_disc), EIGEN_PROGRAM (branch_eigenvalues), OUT.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 file(WRITE "${OUT}/scene.json"
@@ -51,6 +51,32 @@ endif()
 if(NOT events MATCHES "\"kind\": \"contact\", \"phi_e\": 5\\.[5-9]")
   message(FATAL_ERROR "no first contact between phi_e = 5.5 and 6:\n${events}")
 endif()
+# The lowest eigenvalues along the branch from 5.5 (branch_eigenvalues): the lowest is the
+# nearly free turn of the fold pattern (measured 1e-5 N/m and below), the next, the softest shape
+# mode, stays positive (measured 2.1e-3 .. 2.5e-3 N/m): no mode of the cone comes near zero.
+execute_process(COMMAND "${EIGEN_PROGRAM}" "${OUT}/trace" --count 2 --from 5.5
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "branch_eigenvalues failed (${rc}):\n${log}\n${err}")
+endif()
+file(STRINGS "${OUT}/trace/eigenvalues.csv" eigen_rows)
+list(LENGTH eigen_rows eigen_n)
+if(eigen_n LESS 4)
+  message(FATAL_ERROR "eigenvalues.csv has only ${eigen_n} lines")
+endif()
+math(EXPR eigen_last "${eigen_n} - 1")
+foreach(i RANGE 1 ${eigen_last})
+  list(GET eigen_rows ${i} row)
+  string(REPLACE "," ";" fields "${row}")
+  list(GET fields 1 lambda1)
+  list(GET fields 2 lambda2)
+  if(NOT lambda2 GREATER 1e-3)
+    message(FATAL_ERROR "the softest shape mode is not above 1e-3 N/m: ${row}")
+  endif()
+  if(lambda1 GREATER 1e-4 OR lambda1 LESS -1e-4)
+    message(FATAL_ERROR "the lowest eigenvalue is not the nearly free pattern turn: ${row}")
+  endif()
+endforeach()
 # --rings is the lattice family's resolution: with the rings family it is refused by name.
 execute_process(COMMAND "${PROGRAM}" "${OUT}/scene.json" --rings 6 --out "${OUT}/bad"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
