@@ -52,8 +52,9 @@ if(NOT events MATCHES "\"kind\": \"contact\", \"phi_e\": 5\\.[5-9]")
   message(FATAL_ERROR "no first contact between phi_e = 5.5 and 6:\n${events}")
 endif()
 # The lowest eigenvalues along the branch from 5.5 (branch_eigenvalues): the lowest is the
-# nearly free turn of the fold pattern (measured 1e-5 N/m and below), the next, the softest shape
-# mode, stays positive (measured 2.1e-3 .. 2.5e-3 N/m): no mode of the cone comes near zero.
+# nearly free turn of the fold pattern (measured 1.7e-5 N/m and below), the next, the softest
+# shape mode, stays positive (measured 3.0e-3 at 5.55 falling to 2.4e-3 N/m at 6.25): no mode of
+# the cone comes near zero.
 execute_process(COMMAND "${EIGEN_PROGRAM}" "${OUT}/trace" --count 2 --from 5.5
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
