@@ -3,8 +3,9 @@
 
 For every run directory DIR/NAME with a branch.csv: thickness, mesh family and size slope (from NAME),
 elements and unknowns (from NAME.log), the first branch point, phi_e^max and E_b-hat there,
-first contact (gap = h anywhere), mid-surface contact, the largest S4 defect and the first
-negative eigenvalue between phi_e = 0.1 and first contact (or the end), the symmetry_lost event
+first contact (gap = h anywhere), mid-surface contact, the largest S4 defect between phi_e = 0.1
+and first contact (or the end), the first sample past phi_e = 0.1 with a negative eigenvalue, the
+symmetry_lost event
 and the wall time ("unfinished": no cost.json, the run was stopped or is still going). usage: scripts/summarize_cone_runs.py DIR
 """
 import csv
@@ -33,7 +34,8 @@ def summarize(run: pathlib.Path):
     end = contact["phi_e"] if contact else float("inf")
     early = [r for r in rows if 0.1 <= float(r["phi_e"]) < end]
     defect = max((float(r["s4_defect"]) for r in early), default=None)
-    unstable = next((float(r["phi_e"]) for r in early if int(r["n_negative"]) > 0), None)
+    unstable = next((float(r["phi_e"]) for r in rows
+                     if float(r["phi_e"]) >= 0.1 and int(r["n_negative"]) > 0), None)
     cost = json.load(open(run / "cost.json")) if (run / "cost.json").exists() else {}
     eb = event(events, "eb_max")
     eb_value = None
@@ -68,7 +70,7 @@ def main():
         sys.exit(f"summarize_cone_runs.py: no run with a branch.csv under {top}")
     print("| h | mesh | size_slope | elements | unknowns | first branch point | φe^max | Ê_b^max | "
           "gap = h | mid-surface contact | max S4 defect before contact | first negative "
-          "eigenvalue before contact | symmetry_lost | last φe | wall (s) |")
+          "eigenvalue (φe ≥ 0.1) | symmetry_lost | last φe | wall (s) |")
     print("|" + "---|" * 15)
     for run in runs:
         s = summarize(run)
