@@ -56,10 +56,7 @@ int run(int argc, char** argv) {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   const auto pinned =
       mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir + "/states"))
-    files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = examples::saved_point_files(dir);
 
   std::ostringstream csv;
   csv << std::setprecision(10) << "phi_e";

@@ -90,10 +90,7 @@ int run(int argc, char** argv) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   const double contact_distance =
       distance_option > 0.0 ? distance_option : scene.physics.contact_distance.value_or(h);
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir + "/states"))
-    files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = examples::saved_point_files(dir);
 
   std::ofstream csv(dir + "/contact_profile.csv");
   csv << std::setprecision(10) << "phi_e";

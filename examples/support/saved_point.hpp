@@ -4,10 +4,13 @@
 // so a run can be resumed from it and post-processed exactly.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "solvers/continuation/pseudo_arclength.hpp"
 
@@ -40,6 +43,16 @@ inline BranchSample load_point(const std::string& path, Eigen::Index n) {
   for (Eigen::Index i = 0; i < n; ++i) in >> s.tangent_state(i);
   if (!in) throw std::runtime_error("saved point " + path + " is truncated");
   return s;
+}
+
+/// The saved points of a run directory (RUN_DIR/states/*), sorted by name, i.e. in trace order.
+/// Throws std::filesystem::filesystem_error if RUN_DIR/states cannot be read.
+inline std::vector<std::filesystem::path> saved_point_files(const std::string& run_dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(run_dir + "/states"))
+    files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace growshell::examples
