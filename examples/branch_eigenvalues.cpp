@@ -4,8 +4,9 @@
 // [--from, --to], computes the --count lowest eigenvalues of the Hessian with the trace's rigid
 // pins removed (N/m; the pins are trace_disc's, on the mesh's mirror axes). On a disc the
 // lowest is the nearly free turn of the fold pattern about the axis (zero on a perfect disc);
-// the next ones are the softest shape modes, whose sign decides stability. Writes
-// DIR/eigenvalues.csv (written whole, then renamed into place).
+// the next ones are the softest shape modes, whose sign decides stability. For each mode it also
+// gives the reference radius where its displacement is largest. Writes DIR/eigenvalues.csv
+// (written whole, then renamed into place).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,7 +34,8 @@ const char* kUsage = R"(usage: branch_eigenvalues RUN_DIR [options]
   --from P      first excess angle (default 0)
   --to Q        last excess angle (default: the last state)
 Writes RUN_DIR/eigenvalues.csv: phi_e, lambda_1..K (N/m, Hessian with trace_disc's rigid pins
-removed).
+removed), and peak_radius_1..K: the reference radius (m) of the sheet vertex where each mode's
+displacement is largest (where on the sheet the mode lives: at the apex core or out at the folds).
 )";
 
 int run(int argc, char** argv) {
@@ -61,6 +63,7 @@ int run(int argc, char** argv) {
   std::ostringstream csv;
   csv << std::setprecision(10) << "phi_e";
   for (int k = 1; k <= count; ++k) csv << ",lambda_" << k;
+  for (int k = 1; k <= count; ++k) csv << ",peak_radius_" << k;
   csv << '\n';
   int rows = 0;
   for (const auto& file : files) {
@@ -75,6 +78,18 @@ int run(int argc, char** argv) {
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
       csv << ',' << pairs.values(k);
       std::printf(" %12.5e", pairs.values(k));
+    }
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+      double peak = 0.0, radius = 0.0;
+      for (const int v : model.sheet_vertices()) {
+        const double a = pairs.vectors.col(k).segment<3>(3 * v).norm();
+        if (a > peak) {
+          peak = a;
+          radius = (X.segment<2>(3 * v) - model.settings().growth.center.head<2>()).norm();
+        }
+      }
+      csv << ',' << radius;
+      std::printf(" r=%.3f", radius);
     }
     csv << '\n';
     std::printf("\n");
