@@ -17,12 +17,13 @@ ReferenceQuadrature::ReferenceQuadrature(
     int degree, const ThicknessField& thickness)
     : rule_(triangle_quadrature(degree)) {
   if (!thickness) throw std::invalid_argument("thickness field is empty");
+  std::vector<Eigen::VectorXd> regular_values;  // basis values of a regular patch per rule point
   for (const auto& point : rule_) {
     const LoopBasisValues b = evaluate_regular_loop_basis(point.v, point.w);
     JetDerivatives<12> B;
     B << b.first, b.second;
     regular_.push_back(B);
-    regular_values_.push_back(b.value);
+    regular_values.push_back(b.value);
   }
   const std::size_t n_el = patches.patch.size();
   irregular_slot_.assign(n_el, -1);
@@ -41,7 +42,7 @@ ReferenceQuadrature::ReferenceQuadrature(
       Eigen::VectorXd value;
       Eigen::Matrix<double, Eigen::Dynamic, 2> first;
       if (patch.is_regular()) {
-        value = regular_values_[q];
+        value = regular_values[q];
         first = regular_[q].leftCols<2>();
       } else {
         const PatchBasis b = evaluate_patch_basis(patch, rule_[q].v, rule_[q].w);

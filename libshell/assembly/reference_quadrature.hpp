@@ -62,7 +62,6 @@ class ReferenceQuadrature {
  private:
   std::vector<TriangleQuadraturePoint> rule_;
   std::vector<JetDerivatives<12>> regular_;
-  std::vector<Eigen::VectorXd> regular_values_;
   std::vector<int> irregular_slot_;  // per element: -1, or its index among irregular elements
   std::vector<JetDerivatives<Eigen::Dynamic>> irregular_;
   std::vector<Eigen::Vector3d> position_;
