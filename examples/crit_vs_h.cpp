@@ -47,7 +47,10 @@ const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
                       (physics.contact_exclusion_radius "auto" follows it as pi h / 2; a number
                       in the scene is used as it is for every h)
   --h LIST            thicknesses, comma separated (default 0.04,0.03,0.02,0.015)
-  --rings N           mesh rings (default: the scene's)
+  --mesh FAMILY       mesh family: rings (default), gmsh or lattice (mesh.family)
+  --size-slope C      element size per distance from the centre, rings and gmsh families
+                      (mesh.size_slope, default 0.1)
+  --rings N           resolution of the lattice family (rings of a disc, radial layers of a ring)
   --phi-start P       contact-free growth from flat up to P (default 5.0)
   --phi-contact-start P  instead: the cone traced from flat by continuation up to P (below
                       first contact; e.g. 6.25 with --exclusion-factor 8), its samples part of
@@ -93,7 +96,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   const std::vector<double> thicknesses = parse_list(cl.text("--h", "0.04,0.03,0.02,0.015"));
-  const std::string rings = cl.text("--rings", "");
+  examples::apply_mesh_options(base, cl);
   const double phi_start = cl.number("--phi-start", 5.0);
   const double phi_contact_start = cl.number("--phi-contact-start", 0.0);
   const double exclusion_factor = cl.number("--exclusion-factor", 0.0);
@@ -115,7 +118,6 @@ int run(int argc, char** argv) {
   if (!(tolerance > 0.0)) throw std::invalid_argument("--tolerance must be > 0");
   if (base.geometry.shape != SceneShape::Disc)
     throw std::invalid_argument("crit_vs_h traces discs (geometry.shape = disc)");
-  examples::apply_rings_option(base, rings);
   validate_scene(base);
 
   std::filesystem::create_directories(out_dir);

@@ -16,13 +16,14 @@
 #include <string>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/scene_command_line.hpp"
 #include "examples/support/disc_perturbation.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "libshell/analysis/rim_folds.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
-#include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/io/scene.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/continuation/growth_path.hpp"
@@ -31,13 +32,18 @@ namespace {
 
 using namespace growshell;
 
-const char* kUsage = R"(usage: econe_at [options]
+const char* kUsage = R"(usage: econe_at [SCENE.json] [options]
+  SCENE.json         scene (default: the paper's disc, R = 1, h = 0.02, Y = 1e4, nu = 0.3,
+                     the rings mesh with size_slope 0.1); a disc
   --h H              thickness (default 0.02, units of R)
-  --phi PHI          target excess angle phi_e in radians (default 3.73)
+  --phi PHI          target excess angle phi_e in radians (default: continuation.phi_max, 3.73)
   --step DPHI        largest step in phi_e (default 0.1)
-  --rings N          mesh rings (default 24)
-  --grading P        radial grading exponent, 1 = uniform (default 3)
-  --min-spacing S    smallest radial spacing at the centre (default h/2)
+  --mesh FAMILY      mesh family: rings (default), gmsh or lattice (mesh.family)
+  --size-slope C     element size per distance from the centre, rings and gmsh families
+                     (mesh.size_slope, default 0.1)
+  --rings N          rings of the lattice family (mesh.rings, default 24)
+  --grading P        radial grading exponent of the lattice family, 1 = uniform (default 3)
+  --min-spacing S    smallest spacing, at the centre (mesh.min_spacing, default h/2)
   --quadrature D     quadrature degree 1..6 (default 2)
   --nu NU            Poisson ratio (default 0.3)
   --youngs Y         Young's modulus in Pa (default 1e4)
@@ -53,24 +59,30 @@ using examples::disc_perturbation;
 
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they are made
-  examples::CommandLine cl(argc, argv);
+  auto [scene, cl] = examples::read_scene_command_line(argc, argv);
   if (cl.help()) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const double h = cl.number("--h", 0.02);
-  const double phi_target = cl.number("--phi", 3.73);
+  const auto set = [&](const char* option, const char* key) {
+    const std::string v = cl.text(option, "");
+    if (!v.empty()) apply_override(scene, key, v);
+  };
+  set("--h", "thickness");
+  examples::apply_mesh_options(scene, cl);
+  const std::string grading = cl.text("--grading", "");
+  if (!grading.empty()) {
+    if (scene.mesh.family != MeshFamily::Lattice)
+      throw std::invalid_argument("--grading " + grading + " is the lattice family's grading "
+                                  "(--mesh lattice)");
+    apply_override(scene, "mesh.grading_exponent", grading);
+  }
+  set("--min-spacing", "mesh.min_spacing");
+  set("--quadrature", "mesh.quadrature_degree");
+  set("--nu", "material.poisson_ratio");
+  set("--youngs", "material.youngs_modulus");
+  const double phi_target = cl.number("--phi", scene.continuation.phi_max);
   const double max_step = cl.number("--step", 0.1);
-  DiscMeshOptions mesh_options;
-  mesh_options.radius = 1.0;
-  mesh_options.rings = cl.integer("--rings", 24);
-  mesh_options.grading_exponent = cl.number("--grading", 3.0);
-  mesh_options.min_spacing = cl.number("--min-spacing", h / 2);
-  ShellModelSettings settings;
-  settings.material.poisson_ratio = cl.number("--nu", 0.3);
-  settings.material.youngs_modulus = cl.number("--youngs", 1e4);
-  settings.quadrature_degree = cl.integer("--quadrature", 2);
-  settings.thickness = constant_thickness(h);
   const int seed = cl.integer("--seed", 1);
   const double amplitude = cl.number("--amplitude", 1e-3);
   const double rtol = cl.number("--tolerance", 1e-7);
@@ -78,13 +90,19 @@ int run(int argc, char** argv) {
   const std::string out_dir = cl.text("--out", "out/econe");
   const bool verbose = cl.integer("--verbose", 0) != 0;
   cl.reject_unknown();
-  if (!(h > 0.0)) throw std::invalid_argument("--h must be > 0");
-  if (!(phi_target >= 0.0)) throw std::invalid_argument("--phi must be >= 0");
+  validate_scene(scene);
+  if (scene.geometry.shape != SceneShape::Disc)
+    throw std::invalid_argument("econe_at grows discs (geometry.shape = disc)");
+  if (!(std::isfinite(phi_target) && phi_target >= 0.0))
+    throw std::invalid_argument("--phi must be finite and >= 0");
   if (!(max_step > 0.0)) throw std::invalid_argument("--step must be > 0");
 
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const ShellModelSettings settings = scene_model_settings(scene);
+  ShellModel model(scene_mesh(scene), settings);
   std::filesystem::create_directories(out_dir);
-  ShellModel model(make_disc_mesh(mesh_options), settings);
-  std::printf("# disc R = 1, h = %g, %lld elements, %lld unknowns, Y = %g, nu = %g\n", h,
+  std::printf("# disc R = 1, h = %g, %s mesh, %lld elements, %lld unknowns, Y = %g, nu = %g\n", h,
+              mesh_family_name(scene.mesh.family).c_str(),
               static_cast<long long>(model.num_elements()),
               static_cast<long long>(model.dimension()), settings.material.youngs_modulus,
               settings.material.poisson_ratio);

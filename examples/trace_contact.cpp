@@ -61,7 +61,10 @@ using Clock = std::chrono::steady_clock;
 const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   SCENE.json              scene (default: the paper's disc, R = 1, h = 0.02, Y = 1e4, nu = 0.3)
   --h H                   thickness (overrides the scene)
-  --rings N               mesh rings
+  --mesh FAMILY           mesh family: rings (default), gmsh or lattice (mesh.family)
+  --size-slope C          element size per distance from the centre, rings and gmsh families
+                          (mesh.size_slope, default 0.1)
+  --rings N               resolution of the lattice family (rings of a disc, radial layers of a ring)
   --phi-max P             end of the symmetric branch (default 10)
   --skew-at P             the skewed search starts from the symmetric state at P (default 6.6,
                           past the stability loss of every thickness traced so far; from the
@@ -128,7 +131,7 @@ int run(int argc, char** argv) {
   }
   const std::string h_text = cl.text("--h", "");
   if (!h_text.empty()) apply_override(scene, "thickness", h_text);
-  examples::apply_rings_option(scene, cl.text("--rings", ""));
+  examples::apply_mesh_options(scene, cl);
   const std::string exclusion_text = cl.text("--exclusion-radius", "");
   if (!exclusion_text.empty())
     apply_override(scene, "physics.contact_exclusion_radius", exclusion_text);

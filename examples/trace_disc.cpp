@@ -50,7 +50,10 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --mode N            number of folds of the traced cone (default 2)
   --phi-max P         largest excess angle (default 3.73 in the default scene)
   --backward 1        trace towards decreasing phi_e (with --resume)
-  --rings N           mesh resolution (rings of a disc, radial layers of a ring)
+  --mesh FAMILY       mesh family: rings (default), gmsh or lattice (mesh.family)
+  --size-slope C      element size per distance from the centre, rings and gmsh families
+                      (mesh.size_slope, default 0.1)
+  --rings N           resolution of the lattice family (rings of a disc, radial layers of a ring)
   --through-contact 1 do not stop at first contact
   --core-radius RC    ignore the sheet within RC of the centre when measuring the gap
                       (default 0; see docs/validation.md)
@@ -127,7 +130,7 @@ int run(int argc, char** argv) {
   set("--phi-max", "continuation.phi_max");
   set("--min-step", "continuation.min_step");
   set("--out", "output.directory");
-  examples::apply_rings_option(scene, cl.text("--rings", ""));
+  examples::apply_mesh_options(scene, cl);
   if (cl.integer("--backward", 0) != 0) apply_override(scene, "continuation.direction", "backward");
   const bool through_contact = cl.integer("--through-contact", 0) != 0;
   const std::string resume = cl.text("--resume", "");

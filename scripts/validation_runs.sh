@@ -9,7 +9,10 @@ cd "$(dirname "$0")/.."
 DIR=${1:-validation-runs}
 BIN=${BIN:-build/examples}
 mkdir -p "$DIR"
-for g in 1 2 3; do echo "{\"mesh\": {\"grading_exponent\": $g}}" > "$DIR/p$g.json"; done
+# The lattice disc (mesh.family = lattice) with grading exponents 1, 2 and 3.
+for g in 1 2 3; do
+  echo "{\"mesh\": {\"family\": \"lattice\", \"grading_exponent\": $g}}" > "$DIR/p$g.json"
+done
 
 run() {  # NAME SCENE OPTIONS...
   local name=$1 scene=$2; shift 2

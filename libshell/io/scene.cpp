@@ -383,9 +383,6 @@ void validate_scene(const Scene& scene) {
   if (m.min_spacing) require_nonnegative(*m.min_spacing, "mesh.min_spacing");
   require_positive(m.size_slope, "mesh.size_slope");
   if (m.size_max) require_positive(*m.size_max, "mesh.size_max");
-  if (m.family == MeshFamily::Rings && g.shape == SceneShape::Ring)
-    fail("mesh.family = rings makes discs only; a ring (geometry.shape = ring) takes lattice, "
-         "gmsh or file");
   if (m.family == MeshFamily::File && m.file.empty())
     fail("mesh.family = file needs mesh.file, the path of a .msh or .obj mesh");
   if (m.family != MeshFamily::File && !m.file.empty())
@@ -516,6 +513,8 @@ ThicknessField scene_thickness_field(const Scene& scene) {
   };
 }
 
+std::string mesh_family_name(MeshFamily family) { return enum_name(kMeshFamilyNames, family); }
+
 TriangleMesh scene_mesh(const Scene& scene) {
   validate_scene(scene);
   const SceneMesh& m = scene.mesh;
@@ -527,6 +526,7 @@ TriangleMesh scene_mesh(const Scene& scene) {
     case MeshFamily::Rings: {
       RingDiscMeshOptions options;
       options.radius = scene.geometry.radius;
+      options.inner_radius = ring ? scene.geometry.inner_radius : 0.0;
       options.size_slope = m.size_slope;
       options.size_floor = resolved_min_spacing(scene);
       options.size_max = size_max;

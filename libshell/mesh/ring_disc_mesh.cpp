@@ -42,7 +42,9 @@ Eigen::Vector2d circle_point(long m, long D) {
   return {c, s};
 }
 
-RadialSize size_of(const RingDiscMeshOptions& o) { return {o.size_slope, o.size_floor, o.size_max}; }
+RadialSize size_of(const RingDiscMeshOptions& o) {
+  return {o.size_slope, o.size_floor, o.size_max};
+}
 
 }  // namespace
 
@@ -55,26 +57,39 @@ RingDiscRings ring_disc_rings(const RingDiscMeshOptions& o) {
   if (o.center_valence != 4 && o.center_valence != 8 && o.center_valence != 12)
     throw MeshError(caller + ": center_valence must be 4, 8 or 12, got " +
                     std::to_string(o.center_valence));
+  const bool annulus = o.inner_radius > 0.0;
+  if (!(std::isfinite(o.inner_radius) && o.inner_radius >= 0.0 && o.inner_radius < o.radius))
+    throw MeshError(caller + ": inner_radius must be finite, >= 0 and < radius, got " +
+                    std::to_string(o.inner_radius));
   const double uR = radial_size_coordinate(size, o.radius);
-  if (!(uR <= 1e6))
-    throw MeshError(caller + ": the size field gives " + std::to_string(uR) +
+  const double u0 = annulus ? radial_size_coordinate(size, o.inner_radius) : 0.0;
+  if (!(uR - u0 <= 1e6))
+    throw MeshError(caller + ": the size field gives " + std::to_string(uR - u0) +
                     " rings (more than 1e6); increase size_floor or size_slope");
-  const int M = std::max(1, static_cast<int>(std::lround(uR)));
+  const int M = std::max(1, static_cast<int>(std::lround(uR - u0)));
   RingDiscRings out;
   out.radii.resize(static_cast<std::size_t>(M) + 1);
   out.counts.resize(out.radii.size());
   out.first_vertex.resize(out.radii.size());
   out.half_offset.resize(out.radii.size());
-  out.radii[0] = 0.0;
+  out.radii[0] = o.inner_radius;
   out.counts[0] = 1;
+  if (annulus) {
+    // The inner rim's count: center_valence 2^k, the first whose spacing is at most sqrt 2 s.
+    const double ideal =
+        2.0 * std::numbers::pi * o.inner_radius / radial_size(size, o.inner_radius);
+    out.counts[0] = o.center_valence;
+    while (std::numbers::sqrt2 * out.counts[0] < ideal) out.counts[0] *= 2;
+  }
   out.first_vertex[0] = 0;
   out.half_offset[0] = 0;
-  long total = 1;
+  long total = out.counts[0];
   for (int j = 1; j <= M; ++j) {
     const auto J = static_cast<std::size_t>(j);
-    out.radii[J] = j == M ? o.radius
-                          : radius_at_size_coordinate(size, uR * static_cast<double>(j) / M);
-    if (j == 1) {
+    out.radii[J] =
+        j == M ? o.radius
+               : radius_at_size_coordinate(size, u0 + (uR - u0) * static_cast<double>(j) / M);
+    if (j == 1 && !annulus) {
       out.counts[J] = o.center_valence;
       out.half_offset[J] = 0;
     } else {
@@ -86,7 +101,8 @@ RingDiscRings ring_disc_rings(const RingDiscMeshOptions& o) {
     out.first_vertex[J] = static_cast<int>(total);
     total += out.counts[J];
     if (total > 10'000'000)
-      throw MeshError(caller + ": the mesh would have more than 1e7 vertices; increase "
+      throw MeshError(caller +
+                      ": the mesh would have more than 1e7 vertices; increase "
                       "size_floor, size_slope or size_max");
   }
   return out;
@@ -97,8 +113,9 @@ TriangleMesh make_ring_disc_sheet(const RingDiscMeshOptions& o) {
   const int M = static_cast<int>(rings.radii.size()) - 1;
   const int nv = rings.first_vertex[static_cast<std::size_t>(M)] + rings.counts.back();
   TriangleMesh mesh;
+  const bool annulus = rings.radii[0] > 0.0;
   mesh.vertices.setZero(nv, 3);
-  for (int j = 1; j <= M; ++j) {
+  for (int j = annulus ? 0 : 1; j <= M; ++j) {
     const auto J = static_cast<std::size_t>(j);
     const long N = rings.counts[J];
     for (long i = 0; i < N; ++i) {
@@ -112,8 +129,10 @@ TriangleMesh make_ring_disc_sheet(const RingDiscMeshOptions& o) {
     const long N = rings.counts[static_cast<std::size_t>(j)];
     return rings.first_vertex[static_cast<std::size_t>(j)] + static_cast<int>(((i % N) + N) % N);
   };
-  for (long i = 0; i < rings.counts[1]; ++i) faces.emplace_back(0, vertex(1, i), vertex(1, i + 1));
-  for (int j = 2; j <= M; ++j) {
+  if (!annulus)
+    for (long i = 0; i < rings.counts[1]; ++i)
+      faces.emplace_back(0, vertex(1, i), vertex(1, i + 1));
+  for (int j = annulus ? 1 : 2; j <= M; ++j) {
     const auto J = static_cast<std::size_t>(j);
     const long N = rings.counts[J - 1];
     if (rings.counts[J] == N) {

@@ -18,6 +18,7 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/gmsh_disc_mesh.hpp"
 #include "libshell/mesh/mesh_topology.hpp"
+#include "libshell/mesh/ring_disc_mesh.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
 
 namespace growshell {
@@ -185,13 +186,31 @@ TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
   EXPECT_LT((from_file.vertices - gmsh.vertices).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+// The default scene is meshed by the rings family: make_ring_disc_mesh with the default
+// size_slope 0.1 and the floor h/2; for a ring the same family makes the annulus.
+TEST(Scene, DefaultFamilyIsTheRingsMeshForDiscsAndRings) {
+  Scene s = default_scene();
+  EXPECT_EQ(s.mesh.family, MeshFamily::Rings);
+  EXPECT_EQ(mesh_family_name(s.mesh.family), "rings");
+  RingDiscMeshOptions o;
+  o.size_slope = 0.1;
+  o.size_floor = 0.01;
+  const TriangleMesh disc = make_ring_disc_mesh(o);
+  const TriangleMesh from_scene = scene_mesh(s);
+  EXPECT_EQ(from_scene.faces, disc.faces);
+  EXPECT_EQ(from_scene.vertices, disc.vertices);
+  s.geometry.shape = SceneShape::Ring;
+  s.geometry.inner_radius = 0.5;
+  o.inner_radius = 0.5;
+  const TriangleMesh annulus = make_ring_disc_mesh(o);
+  EXPECT_EQ(scene_mesh(s).faces, annulus.faces);
+  EXPECT_EQ(scene_mesh(s).vertices, annulus.vertices);
+  // The inner rim (ring 0: 64 vertices) lies on r = R_i.
+  for (int v = 0; v < 64; ++v) EXPECT_NEAR(annulus.vertices.row(v).norm(), 0.5, 1e-15);
+}
+
 TEST(Scene, MeshFamilyErrorsNameTheKey) {
   Scene s = default_scene();
-  s.geometry.shape = SceneShape::Ring;
-  s.mesh.family = MeshFamily::Rings;
-  EXPECT_NE(error_of([&] { validate_scene(s); }).find("mesh.family = rings makes discs only"),
-            std::string::npos);
-  s = default_scene();
   s.mesh.family = MeshFamily::File;
   EXPECT_EQ(error_of([&] { validate_scene(s); }),
             "mesh.family = file needs mesh.file, the path of a .msh or .obj mesh");
@@ -510,6 +529,7 @@ TEST(SceneBuilders, LinearThicknessProfileEndValues) {
 
 TEST(SceneBuilders, SmallDiscSceneBuildsAValidShellModel) {
   Scene s = default_scene();
+  s.mesh.family = MeshFamily::Lattice;
   s.mesh.rings = 4;
   s.material.youngs_modulus = 2e4;
   s.growth.center = {0.0, 0.0};
@@ -543,6 +563,7 @@ TEST(SceneBuilders, SmallRingSceneBuildsAValidShellModel) {
   Scene s = default_scene();
   s.geometry.shape = SceneShape::Ring;
   s.geometry.inner_radius = 0.5;
+  s.mesh.family = MeshFamily::Lattice;
   s.mesh.radial_layers = 3;
   s.thickness = LinearThickness{0.02, 0.01};
   const TriangleMesh mesh = scene_mesh(s);

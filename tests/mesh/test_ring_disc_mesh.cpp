@@ -164,6 +164,59 @@ TEST(RingDiscMesh, AnglesSizesAndValencesForTheConeSettings) {
   }
 }
 
+// An annulus R_i = 0.5, R = 1 at c = 0.1: its inner rim count is the first 8 * 2^k whose
+// spacing is at most sqrt 2 s(R_i) (2 pi / 0.1 = 62.8 -> 64), every ring keeps it (no doubling
+// in the log-polar region), ring 0 and ring M lie on the two circles, and the mesh has the
+// square's symmetry exactly with no fixed vertex.
+TEST(RingDiscMesh, AnnulusKeepsOneCountBetweenItsTwoRimCircles) {
+  RingDiscMeshOptions o = cone_options(0.02);
+  o.size_slope = 0.1;
+  o.inner_radius = 0.5;
+  const RingDiscRings rings = ring_disc_rings(o);
+  const std::size_t M = rings.radii.size() - 1;
+  EXPECT_EQ(rings.radii[0], 0.5);
+  EXPECT_EQ(rings.radii[M], 1.0);
+  // M = round(ln(R / R_i) / c) = round(6.93) rings of ratio 2^(1/7).
+  EXPECT_EQ(M, 7u);
+  for (std::size_t j = 0; j <= M; ++j) {
+    EXPECT_EQ(rings.counts[j], 64);
+    if (j > 0) {
+      EXPECT_NE(rings.half_offset[j], rings.half_offset[j - 1]);
+      EXPECT_NEAR(rings.radii[j] / rings.radii[j - 1], std::pow(2.0, 1.0 / 7.0), 1e-12);
+    }
+  }
+  const TriangleMesh sheet = make_ring_disc_sheet(o);
+  const TriangleMesh mesh = make_ring_disc_mesh(o);
+  ASSERT_EQ(sheet.vertices.rows(), 64 * 8);
+  // Euler for an annulus (chi = 0): F = 2 V - B with B = 128 rim vertices.
+  EXPECT_EQ(sheet.faces.rows(), 2 * sheet.vertices.rows() - 128);
+  const MeshTopology topo(mesh);
+  EXPECT_EQ(count_elements(topo), sheet.faces.rows());
+  for (int v = 0; v < sheet.vertices.rows(); ++v) {
+    EXPECT_FALSE(topo.is_boundary_vertex(v));
+    const double r = mesh.vertices.row(v).norm();
+    if (v < 64) EXPECT_NEAR(r, 0.5, 1e-15) << "inner rim vertex " << v;
+    if (v >= 64 * 7) EXPECT_NEAR(r, 1.0, 1e-15) << "outer rim vertex " << v;
+  }
+  for (Eigen::Index g = sheet.vertices.rows(); g < mesh.vertices.rows(); ++g) {
+    EXPECT_TRUE(topo.is_boundary_vertex(static_cast<int>(g)));
+    const double r = mesh.vertices.row(g).norm();
+    EXPECT_TRUE(r < 0.5 || r > 1.0) << "ghost vertex " << g << " at r = " << r;
+  }
+  for (const int axis : {0, 1}) {
+    const VertexSymmetry m = mirror_symmetry(mesh.vertices, axis, 1e-12);
+    EXPECT_EQ(symmetry_defect(mesh.vertices, m), 0.0);
+    EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, m));
+  }
+  const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-12);
+  EXPECT_EQ(symmetry_defect(mesh.vertices, q), 0.0);
+  EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, q));
+  for (std::size_t v = 0; v < q.image.size(); ++v) EXPECT_NE(q.image[v], static_cast<int>(v));
+  // Every interior vertex is regular: rings of one count are joined by zig-zag strips.
+  const std::map<int, int> hist = interior_valence_histogram(mesh);
+  EXPECT_EQ(hist, (std::map<int, int>{{6, static_cast<int>(sheet.vertices.rows())}}));
+}
+
 TEST(RingDiscMesh, RejectsInvalidOptions) {
   const auto message = [](RingDiscMeshOptions o) {
     try {
@@ -190,6 +243,12 @@ TEST(RingDiscMesh, RejectsInvalidOptions) {
   o.size_floor = 1e-9;
   o.size_slope = 1e-6;
   EXPECT_NE(message(o).find("more than 1e6"), std::string::npos) << message(o);
+  for (const double inner : {1.0, -0.1, std::nan("")}) {
+    o = {};
+    o.inner_radius = inner;
+    EXPECT_NE(message(o).find("inner_radius must be finite, >= 0 and < radius"), std::string::npos)
+        << message(o);
+  }
 }
 
 }  // namespace

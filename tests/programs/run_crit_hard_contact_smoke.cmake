@@ -17,7 +17,7 @@ file(WRITE "${run}/scene.json" [=[
   "geometry": {"shape": "disc", "radius": 1.0, "inner_radius": 0.25},
   "thickness": 0.04,
   "material": {"youngs_modulus": 10000.0, "poisson_ratio": 0.3},
-  "mesh": {"rings": 6}
+  "mesh": {"family": "lattice", "rings": 6}
 }
 ]=])
 set(header "phi_e,E_stretch,E_bend,Eb_hat,area,min_gap,n_negative,gamma,n_contacts,contact_force,E_penalty,dE_dphi")
