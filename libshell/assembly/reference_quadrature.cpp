@@ -32,6 +32,7 @@ ReferenceQuadrature::ReferenceQuadrature(
   tangents_.reserve(n);
   thickness_.reserve(n);
   int irregular_count = 0;
+  vertex_areas_ = Eigen::VectorXd::Zero(reference_positions.rows());
   for (std::size_t e = 0; e < n_el; ++e) {
     const LoopPatch& patch = patches.patch[e];
     Eigen::MatrixX3d X(patch.size(), 3);
@@ -70,6 +71,9 @@ ReferenceQuadrature::ReferenceQuadrature(
       position_.push_back(p);
       tangents_.push_back(A);
       thickness_.push_back(h);
+      const double dA = rule_[q].weight * A.col(0).cross(A.col(1)).norm();
+      for (int i = 0; i < patch.size(); ++i)
+        vertex_areas_(patch.control[static_cast<std::size_t>(i)]) += dA * value(i);
     }
   }
 }

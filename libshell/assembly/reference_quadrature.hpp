@@ -58,6 +58,12 @@ class ReferenceQuadrature {
   double max_thickness() const;
   /// Total reference area (m^2).
   double reference_area() const;
+  /// Lumped reference area of every control vertex (m^2; one entry per row of the reference
+  /// positions): the integral of its basis function over the elements, i.e. the row sums of
+  /// the consistent mass matrix for unit areal density, by the same rule as the energy. The
+  /// basis functions are non-negative and sum to one, so the entries are >= 0 and add up to
+  /// reference_area(); a vertex that supports no element (none in a ghosted mesh) gets 0.
+  const Eigen::VectorXd& vertex_areas() const { return vertex_areas_; }
 
  private:
   std::vector<TriangleQuadraturePoint> rule_;
@@ -67,6 +73,7 @@ class ReferenceQuadrature {
   std::vector<Eigen::Vector3d> position_;
   std::vector<Eigen::Matrix<double, 3, 2>> tangents_;
   std::vector<double> thickness_;
+  Eigen::VectorXd vertex_areas_;
 };
 
 }  // namespace growshell
