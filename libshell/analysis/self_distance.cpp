@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "libshell/subdivision/limit_surface.hpp"
+#include "libshell/subdivision/element_lattice_sampling.hpp"
 
 namespace growshell {
 namespace {
@@ -41,10 +41,12 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
                              const SelfDistanceOptions& options) {
   const Eigen::Index num_vertices = x.size() / 3;
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  // One copy into column-major storage, so evaluate_limit_surface binds without temporaries.
-  const Eigen::MatrixX3d current = Eigen::Map<const RowMajorX3>(x.data(), num_vertices, 3);
-  const Eigen::MatrixX3d reference =
-      Eigen::Map<const RowMajorX3>(model.reference_positions().data(), num_vertices, 3);
+  // The limit positions at every element's lattice points, current and reference.
+  const ElementLatticeSampling& lattice = model.lattice_sampling(n);
+  const Eigen::MatrixX3d current =
+      lattice.positions(Eigen::Map<const RowMajorX3>(x.data(), num_vertices, 3));
+  const Eigen::MatrixX3d reference = lattice.positions(
+      Eigen::Map<const RowMajorX3>(model.reference_positions().data(), num_vertices, 3));
   Samples s;
   const auto per_element = static_cast<std::size_t>((n + 1) * (n + 2) / 2);
   s.current.reserve(per_element * static_cast<std::size_t>(model.num_elements()));
@@ -57,7 +59,6 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
            static_cast<std::uint64_t>(std::max(p, q));
   };
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
     // Corners: the face (a, b, c) at (v, w) = (0, 0), (1, 0), (0, 1) (loop_patch.hpp).
     const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
     const int A = f[0], B = f[1], C = f[2];
@@ -68,7 +69,6 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
     Eigen::Vector3d corner_a = Eigen::Vector3d::Zero();
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= n - i; ++j) {
-        const double v = static_cast<double>(i) / n, w = static_cast<double>(j) / n;
         bool keep = true;
         const int k = n - i - j;
         if ((i == 0 && j == 0) || (i == n) || (j == n)) {
@@ -84,11 +84,11 @@ Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eig
         }
         const bool spacing_corner = i == 0 && (j == 0 || j == n);
         if (!keep && !spacing_corner) continue;
-        const Eigen::Vector3d p = evaluate_limit_surface(current, control, v, w).position;
+        const Eigen::Vector3d p = current.row(lattice.row(e, i, j)).transpose();
         if (i == 0 && j == 0) corner_a = p;
         if (i == 0 && j == n) s.mean_spacing += (p - corner_a).norm();
         if (!keep) continue;
-        const Eigen::Vector3d q = evaluate_limit_surface(reference, control, v, w).position;
+        const Eigen::Vector3d q = reference.row(lattice.row(e, i, j)).transpose();
         if ((q - options.core_center).norm() < options.core_radius) continue;
         s.current.push_back(p);
         s.reference.push_back(q);

@@ -15,7 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "libshell/analysis/self_distance.hpp"
-#include "libshell/subdivision/limit_surface.hpp"
+#include "libshell/subdivision/element_lattice_sampling.hpp"
 
 namespace growshell {
 namespace {
@@ -42,9 +42,12 @@ struct SampledSurface {
 SampledSurface sample_surface(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x, int n) {
   const Eigen::Index num_vertices = x.size() / 3;
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  const Eigen::MatrixX3d current = Eigen::Map<const RowMajorX3>(x.data(), num_vertices, 3);
-  const Eigen::MatrixX3d reference =
-      Eigen::Map<const RowMajorX3>(model.reference_positions().data(), num_vertices, 3);
+  // The limit positions at every element's lattice points, current and reference.
+  const ElementLatticeSampling& lattice = model.lattice_sampling(n);
+  const Eigen::MatrixX3d current =
+      lattice.positions(Eigen::Map<const RowMajorX3>(x.data(), num_vertices, 3));
+  const Eigen::MatrixX3d reference = lattice.positions(
+      Eigen::Map<const RowMajorX3>(model.reference_positions().data(), num_vertices, 3));
 
   SampledSurface s;
   std::vector<char> evaluated;
@@ -62,7 +65,6 @@ SampledSurface sample_surface(const ShellModel& model, const Eigen::Ref<const Ei
 
   std::vector<Eigen::Index> local(static_cast<std::size_t>((n + 1) * (n + 1)));
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const auto& control = model.patches().patch[static_cast<std::size_t>(e)];
     // Corners: the face (a, b, c) at (v, w) = (0, 0), (1, 0), (0, 1) (loop_patch.hpp).
     const auto& f = model.topology().face(model.patches().face[static_cast<std::size_t>(e)]);
     const int A = f[0], B = f[1], C = f[2];
@@ -93,9 +95,8 @@ SampledSurface sample_surface(const ShellModel& model, const Eigen::Ref<const Ei
         else index = reserve_samples(1);
         const auto k = static_cast<std::size_t>(index);
         if (!evaluated[k]) {
-          const double v = static_cast<double>(i) / n, w = static_cast<double>(j) / n;
-          s.current[k] = evaluate_limit_surface(current, control, v, w).position;
-          s.reference[k] = evaluate_limit_surface(reference, control, v, w).position;
+          s.current[k] = current.row(lattice.row(e, i, j)).transpose();
+          s.reference[k] = reference.row(lattice.row(e, i, j)).transpose();
           evaluated[k] = 1;
         }
         local[static_cast<std::size_t>(i * (n + 1) + j)] = index;

@@ -5,6 +5,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 
@@ -230,7 +233,8 @@ ShellModel::ShellModel(const TriangleMesh& reference_control_mesh, ShellModelSet
       patches_(build_element_patches(topology_)),
       reference_x_(flatten(reference_control_mesh.vertices)),
       reference_(reference_control_mesh.vertices, patches_, settings_.quadrature_degree,
-                 settings_.thickness) {
+                 settings_.thickness),
+      lattice_sampling_(std::make_shared<LatticeSamplingCache>()) {
   std::vector<char> is_corner(topology_.num_vertices(), 0);
   for (int f : patches_.face)
     for (int v : topology_.face(f)) is_corner[v] = 1;
@@ -376,6 +380,25 @@ Eigen::VectorXd ShellModel::element_stretching_density(
     out(e) = b.stretching_density_integral / b.grown_area;
   }
   return out;
+}
+
+struct ShellModel::LatticeSamplingCache {
+  std::mutex mutex;
+  std::map<int, std::unique_ptr<const ElementLatticeSampling>> by_subdivisions;
+};
+
+const ElementLatticeSampling& ShellModel::lattice_sampling(int n) const {
+  const std::lock_guard<std::mutex> lock(lattice_sampling_->mutex);
+  auto& slot = lattice_sampling_->by_subdivisions[n];
+  if (!slot) {
+    try {
+      slot = std::make_unique<const ElementLatticeSampling>(patches_, topology_.num_vertices(), n);
+    } catch (...) {
+      lattice_sampling_->by_subdivisions.erase(n);
+      throw;
+    }
+  }
+  return *slot;
 }
 
 Eigen::MatrixX3d ShellModel::limit_positions(const Eigen::Ref<const Eigen::VectorXd>& x) const {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "libshell/assembly/reference_quadrature.hpp"
@@ -12,6 +13,7 @@
 #include "libshell/energy/material.hpp"
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/triangle_mesh.hpp"
+#include "libshell/subdivision/element_lattice_sampling.hpp"
 #include "libshell/subdivision/element_patches.hpp"
 #include "solvers/newton/sparse_objective.hpp"
 
@@ -88,6 +90,10 @@ class ShellModel final : public SparseObjective {
   const Eigen::VectorXd& reference_positions() const { return reference_x_; }
   const MeshTopology& topology() const { return topology_; }
   const ElementPatches& patches() const { return patches_; }
+  /// The limit-position map at the lattice points (i / n, j / n) of every element
+  /// (ElementLatticeSampling), built on first use for each n and kept (copies of the model share
+  /// it); safe to call from several threads. Throws as ElementLatticeSampling.
+  const ElementLatticeSampling& lattice_sampling(int n) const;
   const ReferenceQuadrature& reference() const { return reference_; }
   const ShellModelSettings& settings() const { return settings_; }
   Eigen::Index num_elements() const { return static_cast<Eigen::Index>(patches_.face.size()); }
@@ -108,6 +114,8 @@ class ShellModel final : public SparseObjective {
   double excess_angle_ = 0.0;
   std::vector<Eigen::Matrix2d> target_metric_;  // per quadrature point, at excess_angle_
   Eigen::SparseMatrix<double> pattern_;
+  struct LatticeSamplingCache;
+  std::shared_ptr<LatticeSamplingCache> lattice_sampling_;
   // Per-thread scatter buffers, reused across evaluations (no allocation per iteration).
   std::vector<Eigen::VectorXd> thread_gradient_;
   std::vector<Eigen::VectorXd> thread_values_;

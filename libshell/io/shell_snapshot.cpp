@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "libshell/subdivision/limit_surface.hpp"
+#include "libshell/subdivision/element_lattice_sampling.hpp"
 
 namespace growshell {
 
@@ -27,9 +27,10 @@ SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const E
       s.triangles.row(e) << index.at(f[0]), index.at(f[1]), index.at(f[2]);
     }
   } else {
-    const Eigen::MatrixX3d positions =
+    const ElementLatticeSampling& lattice = model.lattice_sampling(r);
+    const Eigen::MatrixX3d positions = lattice.positions(
         Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-            x.data(), x.size() / 3, 3);
+            x.data(), x.size() / 3, 3));
     const int per_element = (r + 1) * (r + 2) / 2;
     s.points.resize(n_el * per_element, 3);
     s.triangles.resize(n_el * sub, 3);
@@ -38,10 +39,7 @@ SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const E
       const Eigen::Index base = e * per_element;
       for (int j = 0; j <= r; ++j)
         for (int i = 0; i + j <= r; ++i)
-          s.points.row(base + local(i, j)) =
-              evaluate_limit_surface(positions, model.patches().patch[e],
-                                     static_cast<double>(i) / r, static_cast<double>(j) / r)
-                  .position.transpose();
+          s.points.row(base + local(i, j)) = positions.row(lattice.row(e, i, j));
       Eigen::Index t = e * sub;
       for (int j = 0; j < r; ++j) {
         for (int i = 0; i + j < r; ++i) {

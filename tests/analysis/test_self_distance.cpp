@@ -215,7 +215,9 @@ TEST(SelfDistance, RandomFoldedDiscsMatchBruteForce) {
     const int n = 1 + static_cast<int>(seed % 3);
     const SelfDistance d = smallest_self_distance(model, x, {r_ex, n});
     const BruteForce bf = brute_force_self_distance(model, x, r_ex, n);
-    EXPECT_EQ(d.distance, bf.distance) << "seed " << seed;  // exact: same samples, same pair
+    // The same samples and the same pair; the samples come from the cached lattice map here and
+    // from evaluate_limit_surface in the brute force, equal up to the order of summation.
+    EXPECT_NEAR(d.distance, bf.distance, 1e-14) << "seed " << seed;
     EXPECT_EQ(d.element_a, bf.element_a) << "seed " << seed;
     EXPECT_EQ(d.element_b, bf.element_b) << "seed " << seed;
     // Distinct samples of an N-ring disc: V = 1 + 3 N (N + 1) vertices, E = 3 N (3 N + 1)
