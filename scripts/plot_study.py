@@ -20,7 +20,7 @@ import sys
 KINDS = [
     ("branch_point", "o", "branch point"),
     ("fold", "s", "fold"),
-    ("eb_max", "^", "E_b-hat maximum"),
+    ("eb_max", "^", r"$\hat{E}_b$ maximum"),
     ("contact", "v", "gap = contact distance"),
     ("midsurface_contact", "X", "mid-surface contact"),
     ("symmetry_lost", "D", "S4 symmetry lost"),
@@ -137,7 +137,7 @@ def main():
             y = eb_at(e["phi_e"], phi, eb)
             ax.plot([e["phi_e"]], [y], marker, color=f"C{n + 2}", markersize=7,
                     markeredgecolor="black", label=label if i == 0 else None, zorder=3)
-            ax.annotate(f"{e['phi_e']:.4g}", (e["phi_e"], y), textcoords="offset points",
+            ax.annotate(f"{e['phi_e']:.5g}", (e["phi_e"], y), textcoords="offset points",
                         xytext=(6, 8 if i % 2 == 0 else -14), fontsize=8)
     ax.set_xlabel(r"excess angle $\phi_e$ (rad)")
     ax.set_ylabel(r"normalised bending energy $\hat{E}_b$ (1/m$^2$)")
