@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// The scene: everything a branch-tracing program models (geometry, thickness, material,
-/// growth, mesh, physics switches, continuation and output settings, the study), read from a JSON file
-/// and overridable key by key from the command line. docs/scenes.md documents every key.
+/// growth, mesh, physics switches, continuation and output settings, the study), read from a
+/// JSON file and overridable key by key from the command line. docs/scenes.md documents every
+/// key.
 ///
 /// Units: lengths in metres, Young's modulus in pascals, angles in radians. The defaults are
 /// the paper's disc (R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3), so lengths read as units of R.
