@@ -17,6 +17,7 @@ packages=(
   gmsh libgmsh-dev     # well-kept unstructured mesh generator: the second disc mesh family, sharing no structure with the ring mesh
   libgtest-dev         # unit tests
   libbenchmark-dev     # micro-benchmarks
+  python3-matplotlib   # figures: scripts/plot_study.py (growshell run draws DIR/eb_hat.png), render_surface.py
 )
 
 missing=()

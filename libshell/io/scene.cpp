@@ -53,6 +53,7 @@ const NameTable<MeshFamily> kMeshFamilyNames = {{MeshFamily::Lattice, "lattice"}
 const NameTable<GrowthLaw> kLawNames = {{GrowthLaw::Circumferential, "circumferential"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
+const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"}};
 
 template <class Enum>
 std::string enum_name(const NameTable<Enum>& names, Enum value) {
@@ -274,6 +275,30 @@ const Field kFields[] = {
   {"output.write_vtk",
    [](Scene& s, const Json& v, const std::string& k) { s.output.write_vtk = read_bool(v, k); },
    [](const Scene& s) { return Json(s.output.write_vtk); }},
+  {"study.kind",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.kind = read_enum(v, k, kStudyKindNames); },
+   [](const Scene& s) { return Json(enum_name(kStudyKindNames, s.study.kind)); }, true},
+  {"study.through_contact",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.through_contact = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.study.through_contact); }},
+  {"study.tolerance",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.tolerance = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.tolerance); }},
+  {"study.max_tangent_angle",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.max_tangent_angle = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.max_tangent_angle); }},
+  {"study.eigenmodes",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.eigenmodes = read_int(v, k); },
+   [](const Scene& s) { return Json(s.study.eigenmodes); }},
+  {"study.symmetric_subspace",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.symmetric_subspace = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.study.symmetric_subspace); }},
+  {"study.symmetry_threshold",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.symmetry_threshold = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.symmetry_threshold); }},
+  {"study.core_radius",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.core_radius = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.core_radius); }},
 };
 // clang-format on
 
@@ -414,6 +439,14 @@ void validate_scene(const Scene& scene) {
 
   if (scene.output.directory.empty()) fail("output.directory must not be empty");
   require_at_least(scene.output.snapshot_every, 1, "output.snapshot_every");
+
+  const SceneStudy& st = scene.study;
+  require_positive(st.tolerance, "study.tolerance");
+  if (!(st.max_tangent_angle > 0.0 && st.max_tangent_angle < std::numbers::pi))
+    fail("study.max_tangent_angle = " + format(st.max_tangent_angle) + " must be in (0, pi)");
+  require_at_least(st.eigenmodes, 0, "study.eigenmodes");
+  require_positive(st.symmetry_threshold, "study.symmetry_threshold");
+  require_nonnegative(st.core_radius, "study.core_radius");
 }
 
 Scene read_scene(const std::string& path) {
@@ -514,6 +547,8 @@ ThicknessField scene_thickness_field(const Scene& scene) {
 }
 
 std::string mesh_family_name(MeshFamily family) { return enum_name(kMeshFamilyNames, family); }
+
+std::string study_kind_name(StudyKind kind) { return enum_name(kStudyKindNames, kind); }
 
 TriangleMesh scene_mesh(const Scene& scene) {
   validate_scene(scene);

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// The scene: everything a branch-tracing program models (geometry, thickness, material,
-/// growth, mesh, physics switches, continuation and output settings), read from a JSON file
-/// and overridable key by key from the command line. docs/scenes.md documents every key.
+/// growth, mesh, physics switches, continuation and output settings, the study), read from a
+/// JSON file and overridable key by key from the command line. docs/scenes.md documents every
+/// key.
 ///
 /// Units: lengths in metres, Young's modulus in pascals, angles in radians. The defaults are
 /// the paper's disc (R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3), so lengths read as units of R.
@@ -171,6 +172,38 @@ struct SceneOutput {
   bool write_vtk = true;
 };
 
+/// Which study `growshell run` performs on a scene.
+enum class StudyKind {
+  /// The n-fold cone born at the flat sheet's branch point, traced with its special points and
+  /// events (studies/cone_branch_study.hpp, docs/guide/cone_branch.md).
+  ConeBranch,
+};
+
+/// The study's name in scene files: "cone_branch".
+std::string study_kind_name(StudyKind kind);
+
+/// The study a scene asks for and those of its settings that change its results (the
+/// cone_branch study's; the programs that trace a cone, e.g. trace_disc, read them too).
+struct SceneStudy {
+  StudyKind kind = StudyKind::ConeBranch;
+  /// Trace on past the first contact (gap = contact distance) instead of stopping there.
+  bool through_contact = false;
+  /// Corrector force tolerance relative to the natural force scale Y h^3 / R, > 0.
+  double tolerance = 1e-6;
+  /// Largest angle (rad) between successive tangents of an accepted step, in (0, pi).
+  double max_tangent_angle = 0.3;
+  /// Number of lowest eigenmodes computed (and written) at each special point, >= 0.
+  int eigenmodes = 2;
+  /// Trace the cone among the states with the mirrors of its folds (docs/continuation.md,
+  /// "Symmetric subspace"); the stability index stays the full Hessian's.
+  bool symmetric_subspace = false;
+  /// S4 defect (dimensionless) above which the event symmetry_lost is reported, > 0.
+  double symmetry_threshold = 1e-3;
+  /// Radius (m) about the growth centre within which the sheet is left out of the gap and the
+  /// mid-surface contact test, >= 0.
+  double core_radius = 0.0;
+};
+
 /// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.
 struct Scene {
   SceneGeometry geometry;
@@ -182,11 +215,14 @@ struct Scene {
   ScenePhysics physics;
   SceneContinuation continuation;
   SceneOutput output;
+  SceneStudy study;
 };
 
 /// The paper's disc: R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3, the rings mesh family with
 /// size_slope 0.1 and min_spacing h/2 (auto), quadrature degree 2, phi_e from 0 to 3.73 with steps in
-/// [1e-4, 0.1], mode 2, perturbation 1e-3 R with seed 1, output to "out".
+/// [1e-4, 0.1], mode 2, perturbation 1e-3 R with seed 1, output to "out"; the cone_branch
+/// study with tolerance 1e-6, tangent angle 0.3, 2 eigenmodes, full space, S4 threshold 1e-3,
+/// no core left out, stopping at contact.
 Scene default_scene();
 
 /// Throws std::invalid_argument naming the first offending key, its value and the allowed

@@ -92,6 +92,15 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.continuation.seed, 1u);
   EXPECT_EQ(s.output.directory, "out");
   EXPECT_GE(s.output.snapshot_every, 1);
+  EXPECT_EQ(s.study.kind, StudyKind::ConeBranch);
+  EXPECT_EQ(study_kind_name(s.study.kind), "cone_branch");
+  EXPECT_FALSE(s.study.through_contact);
+  EXPECT_EQ(s.study.tolerance, 1e-6);
+  EXPECT_EQ(s.study.max_tangent_angle, 0.3);
+  EXPECT_EQ(s.study.eigenmodes, 2);
+  EXPECT_FALSE(s.study.symmetric_subspace);
+  EXPECT_EQ(s.study.symmetry_threshold, 1e-3);
+  EXPECT_EQ(s.study.core_radius, 0.0);
   EXPECT_NO_THROW(validate_scene(s));
 }
 
@@ -137,6 +146,13 @@ Scene everything_changed() {
   s.output.directory = "results/ring \"a\"";
   s.output.snapshot_every = 4;
   s.output.write_vtk = false;
+  s.study.through_contact = true;
+  s.study.tolerance = 1e-5;
+  s.study.max_tangent_angle = 0.8;
+  s.study.eigenmodes = 0;
+  s.study.symmetric_subspace = true;
+  s.study.symmetry_threshold = 1.0 / 3.0;
+  s.study.core_radius = 0.05;
   return s;
 }
 
@@ -260,6 +276,14 @@ TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
   EXPECT_EQ(b.output.directory, a.output.directory);
   EXPECT_EQ(b.output.snapshot_every, a.output.snapshot_every);
   EXPECT_EQ(b.output.write_vtk, a.output.write_vtk);
+  EXPECT_EQ(b.study.kind, a.study.kind);
+  EXPECT_EQ(b.study.through_contact, a.study.through_contact);
+  EXPECT_EQ(b.study.tolerance, a.study.tolerance);
+  EXPECT_EQ(b.study.max_tangent_angle, a.study.max_tangent_angle);
+  EXPECT_EQ(b.study.eigenmodes, a.study.eigenmodes);
+  EXPECT_EQ(b.study.symmetric_subspace, a.study.symmetric_subspace);
+  EXPECT_EQ(b.study.symmetry_threshold, a.study.symmetry_threshold);
+  EXPECT_EQ(b.study.core_radius, a.study.core_radius);
   EXPECT_EQ(scene_to_json(b), scene_to_json(a));
 }
 
@@ -395,6 +419,42 @@ TEST(SceneValidation, MeshAndContinuationRanges) {
   EXPECT_EQ(message([](Scene& s) { s.output.snapshot_every = 0; }), "output.snapshot_every = 0 must be >= 1");
   EXPECT_EQ(message([](Scene& s) { s.output.directory.clear(); }), "output.directory must not be empty");
   EXPECT_EQ(message([](Scene& s) { s.growth.center.y() = NAN; }), "growth.center[1] = nan must be finite");
+}
+
+TEST(SceneValidation, StudyRanges) {
+  const auto message = [](auto change) {
+    Scene s = default_scene();
+    change(s);
+    return error_of([&] { validate_scene(s); });
+  };
+  EXPECT_EQ(message([](Scene& s) { s.study.tolerance = 0.0; }),
+            "study.tolerance = 0 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.study.max_tangent_angle = 3.2; }),
+            "study.max_tangent_angle = 3.2 must be in (0, pi)");
+  EXPECT_EQ(message([](Scene& s) { s.study.max_tangent_angle = 0.0; }),
+            "study.max_tangent_angle = 0 must be in (0, pi)");
+  EXPECT_EQ(message([](Scene& s) { s.study.eigenmodes = -1; }), "study.eigenmodes = -1 must be >= 0");
+  EXPECT_EQ(message([](Scene& s) { s.study.symmetry_threshold = -1e-3; }),
+            "study.symmetry_threshold = -0.001 must be finite and > 0");
+  EXPECT_EQ(message([](Scene& s) { s.study.core_radius = -0.1; }),
+            "study.core_radius = -0.1 must be finite and >= 0");
+}
+
+TEST_F(SceneFileTest, StudyKeysAreReadCheckedAndNamed) {
+  const auto e = [&](const std::string& text) { return error_of([&] { read_scene(write("s.json", text)); }); };
+  EXPECT_NE(e(R"({"study": {"kind": "cone"}})").find("study.kind = \"cone\" must be one of \"cone_branch\""),
+            std::string::npos);
+  EXPECT_NE(e(R"({"study": {"tolerance": -1}})").find("study.tolerance = -1 must be finite and > 0"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"study": {"through_contact": 1}})").find("study.through_contact must be true or false"),
+            std::string::npos);
+  EXPECT_NE(e(R"({"study": {"tolerence": 1e-6}})").find("unknown key 'study.tolerence'"), std::string::npos);
+  const Scene s = read_scene(write("ok.json", R"({"study": {"kind": "cone_branch", "eigenmodes": 0}})"));
+  EXPECT_EQ(s.study.eigenmodes, 0);
+  Scene o = default_scene();
+  apply_override(o, "study.symmetric_subspace", "true");
+  apply_override(o, "study.kind", "cone_branch");
+  EXPECT_TRUE(o.study.symmetric_subspace);
 }
 
 // ---- Reading errors ----------------------------------------------------------------------

@@ -1,0 +1,34 @@
+#include "studies/cone_mirror_subspace.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+namespace growshell {
+
+ConeSubspaceChoice cone_mirror_subspace(const ShellModel& model, double radius, int folds) {
+  try {
+    const std::vector<int> axes = folds % 2 == 0 ? std::vector<int>{0, 1} : std::vector<int>{1};
+    return {std::make_shared<const SymmetricSubspace>(mirror_subspace(model, axes, 1e-9 * radius)),
+            ""};
+  } catch (const std::invalid_argument& e) {
+    return {nullptr, std::string("the symmetric branch is traced in the full space: ") + e.what()};
+  }
+}
+
+ConeSubspaceChoice subspace_for_start(std::shared_ptr<const SymmetricSubspace> subspace,
+                                      const Eigen::Ref<const Eigen::VectorXd>& x,
+                                      double max_asymmetry) {
+  if (!subspace) return {nullptr, ""};
+  const double asymmetry = subspace->aligned_asymmetry(x);
+  if (asymmetry <= max_asymmetry) return {std::move(subspace), ""};
+  char note[400];
+  std::snprintf(note, sizeof note,
+                "the symmetric branch is traced in the full space: its start is %.3g m off its "
+                "mirror image in every frame (more than %.3g m; e.g. a fold pattern turned "
+                "against the mesh)",
+                asymmetry, max_asymmetry);
+  return {nullptr, note};
+}
+
+}  // namespace growshell
