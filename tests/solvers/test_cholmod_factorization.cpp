@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/sparse_upper.hpp"
+
 namespace growshell {
 namespace {
 
@@ -45,11 +47,7 @@ SpMat random_spd_full(int side, unsigned seed) {
   return a;
 }
 
-SpMat upper_of(const SpMat& full) {
-  SpMat u = full.triangularView<Eigen::Upper>();
-  u.makeCompressed();
-  return u;
-}
+using test_support::upper_of;
 
 Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
   std::mt19937 rng(seed);

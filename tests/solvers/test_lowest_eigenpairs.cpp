@@ -16,6 +16,7 @@
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
+#include "tests/support/sparse_upper.hpp"
 
 namespace growshell {
 namespace {
@@ -46,11 +47,7 @@ SpMat random_symmetric(int n, int per_row, double diag_lo, double diag_hi, unsig
   return a;
 }
 
-SpMat upper_of(const SpMat& full) {
-  SpMat u = full.triangularView<Eigen::Upper>();
-  u.makeCompressed();
-  return u;
-}
+using test_support::upper_of;
 
 // Dense copy with the rows and columns of `fixed` deleted.
 Eigen::MatrixXd dense_free_block(const SpMat& full, const std::vector<Eigen::Index>& fixed) {

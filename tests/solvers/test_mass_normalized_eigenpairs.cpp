@@ -2,6 +2,7 @@
 // mass, against Eigen's dense generalised solver; M-orthonormal vectors, zero at fixed dofs; the
 // count of negative eigenvalues is H's; bad masses are named.
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
+#include "tests/support/sparse_upper.hpp"
 
 #include <gtest/gtest.h>
 
@@ -36,11 +37,7 @@ SpMat banded_symmetric(int n, unsigned seed) {
   return a;
 }
 
-SpMat upper_of(const SpMat& full) {
-  SpMat u = full.triangularView<Eigen::Upper>();
-  u.makeCompressed();
-  return u;
-}
+using test_support::upper_of;
 
 TEST(MassNormalizedEigenpairs, AgreeWithTheDenseGeneralisedSolver) {
   const int n = 60;

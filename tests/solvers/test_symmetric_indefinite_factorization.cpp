@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "solvers/newton/cholmod_factorization.hpp"
+#include "tests/support/sparse_upper.hpp"
 
 namespace growshell {
 namespace {
@@ -142,11 +143,7 @@ SpMat block_diagonal(const SpMat& a, const SpMat& b) {
   return m;
 }
 
-SpMat upper_of(const SpMat& full) {
-  SpMat u = full.triangularView<Eigen::Upper>();
-  u.makeCompressed();
-  return u;
-}
+using test_support::upper_of;
 
 // A - sigma*I on the pattern of `upper` (which stores every diagonal entry).
 SpMat shifted(const SpMat& upper, double sigma) {
