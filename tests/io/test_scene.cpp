@@ -20,6 +20,7 @@
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/ring_disc_mesh.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace growshell {
 namespace {
@@ -50,16 +51,7 @@ class SceneFileTest : public ::testing::Test {
   fs::path dir_;
 };
 
-/// The message of the std::invalid_argument that `f` throws ("" if it throws nothing).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::error_of;
 
 // ---- Defaults ----------------------------------------------------------------------------
 

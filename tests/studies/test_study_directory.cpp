@@ -7,21 +7,14 @@
 
 #include "studies/branch_record.hpp"
 #include "tests/studies/scratch_directory.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace growshell {
 namespace {
 
 using StudyDirectory = testing::ScratchDirectoryTest;
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::error_of;
 
 TEST_F(StudyDirectory, RefusesANonEmptyDirectoryUnlessToldWhatToDo) {
   const std::string out = path("out");

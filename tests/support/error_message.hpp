@@ -1,0 +1,21 @@
+#pragma once
+// The message of the std::invalid_argument a callable throws, for tests that check what a
+// refusal says.
+
+#include <stdexcept>
+#include <string>
+
+namespace growshell::test_support {
+
+/// The message of the std::invalid_argument that `f` throws ("" if it throws nothing).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace growshell::test_support
