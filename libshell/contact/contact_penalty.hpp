@@ -31,8 +31,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/sparse_objective.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 
 namespace growshell {
 

@@ -6,9 +6,9 @@
 
 #include <Eigen/Core>
 
+#include "core/parametrized_objective.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_penalty.hpp"
-#include "solvers/continuation/parametrized_objective.hpp"
 
 namespace growshell {
 

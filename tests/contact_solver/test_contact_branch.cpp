@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
