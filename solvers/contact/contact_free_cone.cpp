@@ -5,7 +5,7 @@
 #include <string>
 
 #include "libshell/assembly/shell_growth_family.hpp"
-#include "solvers/contact/contact_equilibrium.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 
 namespace growshell {
