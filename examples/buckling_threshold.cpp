@@ -17,6 +17,7 @@
 
 #include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"

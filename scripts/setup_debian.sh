@@ -18,6 +18,7 @@ packages=(
   libgtest-dev         # unit tests
   libbenchmark-dev     # micro-benchmarks
   python3-matplotlib   # figures: scripts/plot_study.py (growshell run draws DIR/eb_hat.png), render_surface.py
+  python3              # the layering test (tests/layering/check_layering.py)
 )
 
 missing=()

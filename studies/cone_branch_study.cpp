@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/sparse_objective.hpp"
 #include "libshell/assembly/reference_quadrature.hpp"
 #include "libshell/energy/circumferential_growth.hpp"
 #include "libshell/energy/material.hpp"
@@ -15,7 +16,6 @@
 #include "libshell/mesh/triangle_mesh.hpp"
 #include "libshell/subdivision/element_lattice_sampling.hpp"
 #include "libshell/subdivision/element_patches.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 
 namespace growshell {
 

@@ -52,11 +52,11 @@
 #include <span>
 #include <vector>
 
+#include "core/inequality_constraints.hpp"
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/contact/edge_edge_distance.hpp"
 #include "libshell/contact/point_triangle_distance.hpp"
-#include "solvers/contact/inequality_constraints.hpp"
 
 namespace growshell {
 

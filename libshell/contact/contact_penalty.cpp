@@ -134,16 +134,16 @@ double ContactPenalty::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 // ---- PenalizedEnergy -----------------------------------------------------------------------
 
-PenalizedEnergy::PenalizedEnergy(SparseObjective& energy, ContactPenalty& penalty)
-    : energy_(energy), penalty_(penalty) {
-  const Eigen::Index n = energy.dimension();
+PenalizedEnergy::PenalizedEnergy(ShellModel& model, ContactPenalty& penalty)
+    : model_(model), penalty_(penalty) {
+  const Eigen::Index n = model.dimension();
   if (penalty.dimension() != n) {
     std::ostringstream s;
     s << "PenalizedEnergy: the energy has " << n << " unknowns but the penalty has "
       << penalty.dimension();
     throw std::invalid_argument(s.str());
   }
-  energy_hessian_ = energy.hessian_pattern();
+  energy_hessian_ = model.hessian_pattern();
   penalty_hessian_ = penalty.hessian_pattern();
   check_upper_pattern(energy_hessian_, n, "energy");
   check_upper_pattern(penalty_hessian_, n, "penalty");
@@ -198,7 +198,7 @@ double PenalizedEnergy::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
   Eigen::VectorXd* energy_gradient = gradient != nullptr ? &energy_gradient_ : nullptr;
   Eigen::SparseMatrix<double>* energy_hessian =
       hessian_upper != nullptr ? &energy_hessian_ : nullptr;
-  const double e = energy_.evaluate(x, energy_gradient, energy_hessian);
+  const double e = model_.evaluate(x, energy_gradient, energy_hessian);
   last_penalty_ = 0.0;
   if (!std::isfinite(e)) return e;
   const double p = penalty_.evaluate(x, gradient != nullptr ? &penalty_gradient_ : nullptr,

@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Self-contact as a penalty energy (the quadratic repulsion of Stoop et al. 2010), on the
-/// control dofs of the shell, and the adaptor that adds it to the shell energy so that the
-/// Newton solver minimises both.
+/// control dofs of the shell, and the adaptor that adds it to the shell energy, so that the
+/// Newton solver minimises both and continuation follows both in the excess angle.
 ///
 ///   P(x) = (k / 2) sum_pairs m_k(x) max(0, offset - d_k(x))^2
 ///
@@ -31,8 +31,10 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/parametrized_objective.hpp"
+#include "core/sparse_objective.hpp"
+#include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 
 namespace growshell {
 
@@ -88,17 +90,22 @@ class ContactPenalty final : public SparseObjective {
   double stiffness_ = 0.0;
 };
 
-/// E(x) + P(x) for a SparseObjective E (e.g. ShellModel) and a ContactPenalty P of the same
-/// dimension, with the merged (union) Hessian pattern, so that NewtonSolver can minimise
-/// shell + penalty. Holds references: both objects must outlive the adaptor. Changes to
-/// them that keep their patterns (growth angle, stiffness) take effect at the next evaluate.
-class PenalizedEnergy final : public SparseObjective {
+/// Shell + penalty, the one adaptor of the two: E(x; phi_e) + P(x) for a ShellModel E (at its
+/// excess angle phi_e) and a ContactPenalty P of the same dimension, with the merged (union)
+/// Hessian pattern. As a SparseObjective it is what NewtonSolver minimises and the stability
+/// layer factorises; as a ParametrizedObjective in phi_e it is the family that
+/// pseudo-arclength continuation follows through contact (P does not depend on phi_e, so
+/// d(gradient)/d(phi_e) is the shell's). The Hessian pattern is fixed for the adaptor's
+/// lifetime, i.e. for one pair set. Holds references: both objects must outlive the adaptor.
+/// Changes to them that keep their patterns (growth angle, stiffness) take effect at the next
+/// evaluate.
+class PenalizedEnergy final : public ParametrizedObjective {
  public:
   /// Throws std::invalid_argument if the dimensions differ or a pattern is not a compressed
   /// n x n upper triangle.
-  PenalizedEnergy(SparseObjective& energy, ContactPenalty& penalty);
+  PenalizedEnergy(ShellModel& model, ContactPenalty& penalty);
 
-  Eigen::Index dimension() const override { return energy_.dimension(); }
+  Eigen::Index dimension() const override { return model_.dimension(); }
   /// Union of the two upper-triangular patterns.
   Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
 
@@ -109,15 +116,23 @@ class PenalizedEnergy final : public SparseObjective {
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
                   Eigen::SparseMatrix<double>* hessian_upper) override;
 
+  /// Sets the shell's excess angle phi_e (radians).
+  void set_parameter(double lambda) override { model_.set_excess_angle(lambda); }
+  double parameter() const override { return model_.excess_angle(); }
+  /// d(gradient)/d(phi_e) at x: the shell's (P does not depend on phi_e).
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) override {
+    return model_.gradient_excess_angle_derivative(x);
+  }
+
   /// P at the last evaluate() (J), 0 before the first or after a non-finite E; for reporting
   /// how much of the total energy is contact.
   double last_penalty() const { return last_penalty_; }
 
-  SparseObjective& energy() { return energy_; }
+  ShellModel& model() { return model_; }
   ContactPenalty& penalty() { return penalty_; }
 
  private:
-  SparseObjective& energy_;
+  ShellModel& model_;
   ContactPenalty& penalty_;
   Eigen::SparseMatrix<double> pattern_;
   // Position in pattern_'s value array of every stored entry of each part's pattern.

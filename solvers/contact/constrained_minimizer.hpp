@@ -17,8 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "solvers/contact/inequality_constraints.hpp"
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/inequality_constraints.hpp"
+#include "core/sparse_objective.hpp"
 
 namespace growshell {
 

@@ -10,7 +10,6 @@
 #include <utility>
 
 #include "libshell/contact/contact_penalty.hpp"
-#include "solvers/contact/penalized_growth_family.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -173,7 +172,7 @@ ContactBranchTrace trace_contact_branch(
     }
     ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
                            model.dimension(), options.gap);
-    PenalizedGrowthFamily family(model, penalty);
+    PenalizedEnergy family(model, penalty);
     ArclengthOptions segment_options = arc;
     segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);

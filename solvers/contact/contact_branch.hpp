@@ -25,7 +25,7 @@
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
-#include "solvers/contact/contact_equilibrium.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 

@@ -68,28 +68,6 @@ struct ContactSolveResult {
   bool used_contact = false;  ///< false if the no-contact fast path sufficed
 };
 
-/// Which near pairs near_contact_pairs keeps (see ContactSolveOptions).
-struct NearPairSelection {
-  bool edge_edge_pairs = true;
-  bool nearest_triangle_only = false;
-};
-
-/// Near pairs of state x: candidates of the broad phase at query distance `distance` whose
-/// exact distance (with the mollifier off) is below `distance`; with
-/// selection.nearest_triangle_only, per proxy vertex only the nearest such triangle (ties to
-/// the lower index), and edge-edge pairs only if selection.edge_edge_pairs.
-ContactCandidates near_contact_pairs(const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                     double distance, double exclusion_radius,
-                                     const NearPairSelection& selection = {});
-
-/// The sorted union of two pair sets, without duplicates.
-ContactCandidates merge_contact_pairs(const ContactCandidates& a, const ContactCandidates& b);
-
-/// Smallest exact (unmollified) distance (m) between the primitives of `pairs` at state x;
-/// +infinity if there is no pair.
-double smallest_pair_distance(const ContactProxy& proxy, const ContactCandidates& pairs,
-                              const Eigen::Ref<const Eigen::VectorXd>& x);
-
 /// Minimises model's energy at its current excess angle from x0 (which should satisfy the
 /// gaps: Ipopt keeps the interior-point iterates feasible only from a feasible start) with
 /// `fixed_dofs` held. `warm` (optional): a previous result whose forces seed the multipliers

@@ -4,9 +4,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "solvers/contact/contact_equilibrium.hpp"
+#include "libshell/assembly/shell_growth_family.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
-#include "solvers/continuation/parametrized_objective.hpp"
 
 namespace growshell {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "libshell/contact/contact_penalty.hpp"
-#include "solvers/contact/contact_equilibrium.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace growshell {

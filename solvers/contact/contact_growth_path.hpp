@@ -28,8 +28,8 @@ ContactCandidates near_penalty_pairs(const ContactProxy& proxy,
                                      const ContactBranchOptions& options);
 
 /// Shell + contact penalty (stiffness, contact distance of `options`) on a fixed pair set: the
-/// objective that relaxations minimise. Not copyable or movable (the energy refers to the
-/// penalty member).
+/// objective that relaxations minimise. Owns the pair set and the penalty that `energy` (the
+/// PenalizedEnergy adaptor) refers to, so it is not copyable or movable.
 struct PenalizedShell {
   ContactCandidates pairs;
   ContactPenalty penalty;

@@ -28,8 +28,8 @@
 
 #include <Eigen/Core>
 
-#include "solvers/contact/inequality_constraints.hpp"
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/inequality_constraints.hpp"
+#include "core/sparse_objective.hpp"
 #include "solvers/stability/reduced_hessian_inertia.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
 

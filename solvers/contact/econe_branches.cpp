@@ -8,6 +8,7 @@
 
 #include "libshell/analysis/self_intersection.hpp"
 #include "libshell/contact/contact_penalty.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/newton/newton_solver.hpp"

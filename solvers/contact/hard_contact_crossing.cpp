@@ -8,8 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "libshell/analysis/contact_zones.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
-#include "solvers/contact/contact_zones.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "core/parametrized_objective.hpp"
 #include "libshell/assembly/shell_model.hpp"
-#include "solvers/continuation/parametrized_objective.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 
 namespace growshell {

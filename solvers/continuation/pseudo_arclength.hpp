@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solvers/continuation/parametrized_objective.hpp"
+#include "core/parametrized_objective.hpp"
 
 namespace growshell {
 

@@ -10,7 +10,7 @@
 #include <functional>
 #include <vector>
 
-#include "solvers/continuation/parametrized_objective.hpp"
+#include "core/parametrized_objective.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 

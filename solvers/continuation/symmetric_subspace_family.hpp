@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "solvers/continuation/parametrized_objective.hpp"
+#include "core/parametrized_objective.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 
 namespace growshell {

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/sparse_objective.hpp"
 
 namespace growshell {
 

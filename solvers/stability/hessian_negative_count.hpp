@@ -8,8 +8,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "core/sparse_objective.hpp"
 #include "solvers/newton/fixed_dof_elimination.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
 
 namespace growshell {

@@ -30,7 +30,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/sparse_objective.hpp"
 
 namespace growshell {
 

@@ -20,7 +20,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/sparse_objective.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 namespace growshell {

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/sparse_objective.hpp"
 
 namespace growshell {
 

@@ -1,8 +1,9 @@
 // Contact penalty P = (k/2) sum m max(0, offset - d)^2: closed form for a point over a
 // triangle, zero when every gap exceeds the offset, the sum over pairs on a folded disc,
 // gradient and Hessian against central differences, Hessian pattern against every nonzero of a
-// finite-difference Hessian, PenalizedEnergy = shell + penalty (and Newton runs on it), the
-// stiffness scale, bad input.
+// finite-difference Hessian, PenalizedEnergy = shell + penalty (and Newton runs on it) and, as
+// a family in the excess angle, the shell's parameter and parameter derivative, the stiffness
+// scale, bad input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/parametrized_objective.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
@@ -314,6 +316,27 @@ TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
   EXPECT_TRUE(std::isfinite(result.energy));
   EXPECT_LT(result.energy, E);
   EXPECT_GT(result.iterations, 0);
+}
+
+TEST(ContactPenalty, PenalizedEnergyIsAFamilyInTheShellsExcessAngle) {
+  const FoldedScene scene(0.02, 1);
+  const Eigen::Index n = scene.model.dimension();
+  ShellModel shell = scene.model;
+  shell.set_excess_angle(0.5);
+  ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 3e3, n);
+  PenalizedEnergy total(shell, penalty);
+  ParametrizedObjective& family = total;
+  EXPECT_EQ(family.parameter(), 0.5);
+  family.set_parameter(0.7);
+  EXPECT_EQ(shell.excess_angle(), 0.7);
+  // P does not depend on phi_e: the family's d(gradient)/d(phi_e) is the shell's, bit for bit,
+  // and its energy follows the shell's angle.
+  const Eigen::VectorXd derivative = family.gradient_parameter_derivative(scene.x);
+  EXPECT_TRUE(derivative == shell.gradient_excess_angle_derivative(scene.x));
+  const double P = penalty.evaluate(scene.x, nullptr, nullptr);
+  ASSERT_GT(P, 0.0);
+  EXPECT_EQ(family.evaluate(scene.x, nullptr, nullptr),
+            shell.evaluate(scene.x, nullptr, nullptr) + P);
 }
 
 TEST(ContactPenalty, StiffnessScaleAndMeanSpacing) {

@@ -31,9 +31,11 @@
 #include <string>
 #include <vector>
 
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"

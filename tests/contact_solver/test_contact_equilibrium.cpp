@@ -1,13 +1,14 @@
-// solve_contact_equilibrium, near_contact_pairs, contact_zones and contact_plane_angle:
+// solve_contact_equilibrium:
 //  - a strip pressed onto a parallel one stops at distance h, its contact forces balance the
-//    load, and without load the no-contact fast path is taken;
+//    load and form one contact zone, and without load the no-contact fast path is taken;
 //  - far from touching the result is plain Newton's, bit for bit;
 //  - a pair missed at the start triggers a second round; warm restarts;
 //  - after every converged solve no pair is closer than h - violation_tolerance;
 //  - relax_with_contact with a bound on the Newton step searches the pairs again before two
 //    layers can pass through each other (unbounded, the same relaxation passes through);
-//  - near_contact_pairs against brute force with exact distances;
-//  - contact zones and plane angles on hand-made pairs with known answers;
+//  - near_contact_pairs against brute force with exact distances on the pressed strip (on a
+//    folded disc: tests/contact/test_near_contact_pairs.cpp; contact zones on hand-made pairs:
+//    tests/analysis/test_contact_zones.cpp);
 //  - bad options and bad input are rejected with messages naming them.
 //
 // The shell scene: two strips in one ShellModel (h = 0.02 m, Y = 1e4 Pa, nu = 0.3). The
@@ -32,21 +33,23 @@
 #include <string>
 #include <vector>
 
+#include "libshell/analysis/contact_zones.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
-#include "solvers/contact/contact_zones.hpp"
 #include "solvers/newton/newton_solver.hpp"
-#include "support/sheet_states.hpp"
+#include "support/near_pairs_brute_force.hpp"
 
 namespace growshell {
 namespace {
 
-using test_support::folded_sheet;
+using test_support::expect_same_pairs;
+using test_support::expected_near_pairs;
 
 constexpr double kPi = 3.14159265358979323846;
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -482,103 +485,9 @@ TEST(ContactEquilibrium, WarmRestartAtTheSolutionStaysThere) {
 }
 
 // ---------------------------------------------------------------------------------------
-// (4) near_contact_pairs returns exactly the pairs whose exact distance is below the query
-// distance: compared with every pair of the brute-force broad phase, measured one by one.
-
-/// Reference answer: brute-force candidates at query distance `distance`, kept if their exact
-/// (unmollified) distance is below it; with `nearest`, per vertex only the nearest triangle
-/// (the first in index order among equals); edge-edge pairs only if `edges`.
-ContactCandidates expected_near_pairs(const ContactProxy& proxy, const Eigen::VectorXd& x,
-                                      double distance, double exclusion_radius, bool edges,
-                                      bool nearest, Eigen::Index* candidates = nullptr) {
-  ContactCandidateOptions co;
-  co.query_distance = distance;
-  co.exclusion_radius = exclusion_radius;
-  const ContactCandidates all =
-      find_contact_candidates_brute_force(proxy, proxy_positions(proxy, x), co);
-  if (candidates != nullptr) *candidates = all.size();
-  ContactCandidates out;
-  out.vertex_triangle.resize(0, 2);
-  out.edge_edge.resize(0, 2);
-  if (all.empty()) return out;
-  ContactGapOptions plain;
-  plain.mollify_edge_edge = false;
-  ContactGapConstraints c(proxy, all, 0.0, x.size(), plain);
-  std::vector<Eigen::Index> vt, ee;
-  const Eigen::Index nvt = all.vertex_triangle.rows();
-  for (Eigen::Index k = 0; k < c.count(); ++k) {
-    const double d = c.pair_geometry(x, k).distance;
-    if (!(d < distance)) continue;
-    if (k >= nvt) {
-      if (edges) ee.push_back(k - nvt);
-      continue;
-    }
-    if (nearest) {
-      // Is there a pair of the same vertex that is nearer, or as near with a lower triangle?
-      bool beaten = false;
-      for (Eigen::Index m = 0; m < nvt && !beaten; ++m) {
-        if (m == k || all.vertex_triangle(m, 0) != all.vertex_triangle(k, 0)) continue;
-        const double dm = c.pair_geometry(x, m).distance;
-        beaten = dm < distance &&
-                 (dm < d || (dm == d && all.vertex_triangle(m, 1) < all.vertex_triangle(k, 1)));
-      }
-      if (beaten) continue;
-    }
-    vt.push_back(k);
-  }
-  out.vertex_triangle.resize(static_cast<Eigen::Index>(vt.size()), 2);
-  out.edge_edge.resize(static_cast<Eigen::Index>(ee.size()), 2);
-  for (std::size_t i = 0; i < vt.size(); ++i)
-    out.vertex_triangle.row(static_cast<Eigen::Index>(i)) = all.vertex_triangle.row(vt[i]);
-  for (std::size_t i = 0; i < ee.size(); ++i)
-    out.edge_edge.row(static_cast<Eigen::Index>(i)) = all.edge_edge.row(ee[i]);
-  return out;
-}
-
-void expect_same_pairs(const ContactCandidates& got, const ContactCandidates& want,
-                       const std::string& what) {
-  ASSERT_EQ(got.vertex_triangle.rows(), want.vertex_triangle.rows()) << what;
-  ASSERT_EQ(got.edge_edge.rows(), want.edge_edge.rows()) << what;
-  EXPECT_TRUE(got.vertex_triangle == want.vertex_triangle) << what;
-  EXPECT_TRUE(got.edge_edge == want.edge_edge) << what;
-}
-
-TEST(NearContactPairs, ExactlyThePairsCloserThanTheDistance) {
-  DiscMeshOptions mesh;
-  mesh.rings = 5;
-  ShellModel model(make_disc_mesh(mesh), ShellModelSettings{});
-  const ContactProxy proxy = make_contact_proxy(model, 2);
-  // Layers 0.08 m apart, wobble 0.01 m: distances between the layers spread over about
-  // 0.06 .. 0.1 m, so a query at 0.09 m cuts through the middle of them.
-  const Eigen::VectorXd x = folded_sheet(model, 0.0, 0.04, 0.01);
-  const double r_ex = 0.2;
-  for (const double distance : {0.09, 0.12}) {
-    Eigen::Index candidates = 0;
-    const ContactCandidates want =
-        expected_near_pairs(proxy, x, distance, r_ex, true, false, &candidates);
-    const ContactCandidates got = near_contact_pairs(proxy, x, distance, r_ex);
-    // Measured: at 0.09 m 1559 vertex-triangle + 4160 edge-edge pairs of 12664 candidates,
-    // at 0.12 m 2995 + 7739 of 21475.
-    // The filter is exercised: some candidates of the boxes are dropped, both kinds kept.
-    EXPECT_GT(want.vertex_triangle.rows(), 0);
-    EXPECT_GT(want.edge_edge.rows(), 0);
-    EXPECT_LT(want.size(), candidates);
-    expect_same_pairs(got, want, "all pairs at " + std::to_string(distance));
-
-    NearPairSelection nearest;
-    nearest.edge_edge_pairs = false;
-    nearest.nearest_triangle_only = true;
-    const ContactCandidates want_nearest =
-        expected_near_pairs(proxy, x, distance, r_ex, false, true);
-    const ContactCandidates got_nearest = near_contact_pairs(proxy, x, distance, r_ex, nearest);
-    EXPECT_LT(want_nearest.vertex_triangle.rows(), want.vertex_triangle.rows());
-    expect_same_pairs(got_nearest, want_nearest,
-                      "nearest triangles at " + std::to_string(distance));
-  }
-  // Below the smallest distance between the layers: nothing.
-  EXPECT_TRUE(near_contact_pairs(proxy, x, 0.03, r_ex).empty());
-}
-
+// (4) near_contact_pairs (libshell/contact, tested in tests/contact) on the pressed-strip
+// scene: exactly the pairs of the brute-force broad phase whose exact distance is below the
+// query distance.
 TEST(NearContactPairs, TwoStripsAgreeWithBruteForce) {
   TwoStrips s;
   const double h = TwoStrips::kH;
@@ -590,217 +499,7 @@ TEST(NearContactPairs, TwoStripsAgreeWithBruteForce) {
 }
 
 // ---------------------------------------------------------------------------------------
-// (5) contact_zones on hand-made pairs with known answers. Identity proxy: the unknowns are
-// the points themselves.
-ContactProxy identity_proxy(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles,
-                            const Eigen::MatrixX2i& edges = Eigen::MatrixX2i(0, 2)) {
-  ContactProxy proxy;
-  const Eigen::Index n = 3 * points.rows();
-  proxy.map.resize(n, n);
-  proxy.map.setIdentity();
-  proxy.triangles = triangles;
-  proxy.edges = edges;
-  proxy.reference_positions = points;
-  return proxy;
-}
-
-Eigen::VectorXd flatten(const Eigen::MatrixX3d& points) {
-  Eigen::VectorXd x(3 * points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) x.segment<3>(3 * i) = points.row(i).transpose();
-  return x;
-}
-
-// Zone A: three points over and under a large triangle in z = 0 (normals +z, -z, +z), their
-// contact points 0.41 and 0.40 m apart in a chain (0.8 m end to end), linked at 0.5 m.
-// Zone B, 10 m away: two points over two triangles whose planes have normals n1 (tilted by
-// gamma from z about y) and n2 (n1 turned by 0.2 rad about the first triangle's tangent t1).
-// Two more pairs far from both carry forces below the active fraction (one tiny, one
-// slightly negative, as Ipopt leaves inactive multipliers).
-struct ZoneScene {
-  static constexpr double kGamma = 1.1;
-  Eigen::Vector3d n1, n2;
-  Eigen::MatrixX3d points;
-  Eigen::MatrixX3i triangles;
-  ContactCandidates pairs;
-  Eigen::VectorXd forces;
-
-  ZoneScene() {
-    n1 = Eigen::Vector3d(std::sin(kGamma), 0.0, std::cos(kGamma));
-    const Eigen::Vector3d t1(std::cos(kGamma), 0.0, -std::sin(kGamma)), t2(0.0, 1.0, 0.0);
-    const Eigen::Vector3d t2b = std::cos(0.2) * t2 + std::sin(0.2) * n1;
-    n2 = t1.cross(t2b);
-    const Eigen::Vector3d c(10.0, 0.0, 0.0), c2 = c + 0.2 * t2;
-    // 0-2: triangle 0 in z = 0; 3-5: the points of zone A.
-    std::vector<Eigen::Vector3d> p = {{0, 0, 0},       {2, 0, 0},        {0, 2, 0},
-                                      {0.1, 0.1, 0.1}, {0.5, 0.1, -0.1}, {0.9, 0.1, 0.1}};
-    // 6-8: triangle 1 (normal n1); 9-11: triangle 2 (normal n2); 12, 13: points over them.
-    p.insert(p.end(), {Eigen::Vector3d(c), Eigen::Vector3d(c + t1), Eigen::Vector3d(c + t2),
-                       Eigen::Vector3d(c2), Eigen::Vector3d(c2 + t1), Eigen::Vector3d(c2 + t2b),
-                       Eigen::Vector3d(c + 0.2 * t1 + 0.3 * t2 + 0.1 * n1),
-                       Eigen::Vector3d(c2 + 0.2 * t1 + 0.05 * t2b + 0.05 * n2)});
-    // 14-16: triangle 3, far away; 17, 18: the points of the two inactive pairs.
-    p.insert(p.end(), {{-10, 0, 0}, {-9, 0, 0}, {-10, 1, 0}, {-9.8, 0.1, 0.2}, {-9.8, 0.2, -0.3}});
-    points.resize(static_cast<Eigen::Index>(p.size()), 3);
-    for (std::size_t i = 0; i < p.size(); ++i)
-      points.row(static_cast<Eigen::Index>(i)) = p[i].transpose();
-    triangles.resize(4, 3);
-    triangles << 0, 1, 2, 6, 7, 8, 9, 10, 11, 14, 15, 16;
-    pairs.vertex_triangle.resize(7, 2);
-    pairs.vertex_triangle << 3, 0, 4, 0, 5, 0, 12, 1, 13, 2, 17, 3, 18, 3;
-    pairs.edge_edge.resize(0, 2);
-    forces.resize(7);
-    forces << 2.0, 1.0, 0.5, 0.7, 0.25, 1e-5, -1e-9;
-  }
-};
-
-TEST(ContactZones, TwoZonesWithKnownForcesNormalsAndAngle) {
-  const ZoneScene z;
-  const ContactProxy proxy = identity_proxy(z.points, z.triangles);
-  const Eigen::VectorXd x = flatten(z.points);
-  ContactGapConstraints gaps(proxy, z.pairs, 0.05, x.size());
-  const std::vector<ContactZone> zones = contact_zones(gaps, x, z.forces, 0.5);
-  ASSERT_EQ(zones.size(), 2u);
-  // Largest total force first; pair lists are constraint indices.
-  EXPECT_EQ(zones[0].pairs, (std::vector<Eigen::Index>{0, 1, 2}));
-  EXPECT_EQ(zones[1].pairs, (std::vector<Eigen::Index>{3, 4}));
-  // Sums of the same three or two doubles: exact up to one rounding each.
-  EXPECT_NEAR(zones[0].force, 3.5, 1e-15);
-  EXPECT_NEAR(zones[1].force, 0.95, 1e-15);
-  // Zone A: the -z normal of the point under the plane is flipped to the strongest pair's +z.
-  EXPECT_LE((zones[0].normal - Eigen::Vector3d(0, 0, 1)).norm(), 1e-12);
-  // Centroid: force-weighted midpoints of the closest points (vertex and its foot).
-  const Eigen::Vector3d centroid_a =
-      (2.0 * Eigen::Vector3d(0.1, 0.1, 0.05) + 1.0 * Eigen::Vector3d(0.5, 0.1, -0.05) +
-       0.5 * Eigen::Vector3d(0.9, 0.1, 0.05)) /
-      3.5;
-  EXPECT_LE((zones[0].centroid - centroid_a).norm(), 1e-12);
-  // Zone B: force-weighted mean of n1 and n2. The pair normals come from closest points of
-  // O(10 m) coordinates, so they carry rounding of about 1e-15 / 0.05 m: 1e-12 is ample.
-  const Eigen::Vector3d normal_b = (0.7 * z.n1 + 0.25 * z.n2).normalized();
-  EXPECT_LE((zones[1].normal - normal_b).norm(), 1e-12) << zones[1].normal.transpose();
-  EXPECT_NEAR(contact_plane_angle(zones), std::acos(normal_b.z()), 1e-12);
-
-  // A link distance below the chain's links splits zone A into its three pairs.
-  const std::vector<ContactZone> split = contact_zones(gaps, x, z.forces, 0.3);
-  ASSERT_EQ(split.size(), 4u);
-  EXPECT_EQ(split[0].pairs, (std::vector<Eigen::Index>{0}));
-  EXPECT_EQ(split[1].pairs, (std::vector<Eigen::Index>{1}));
-  EXPECT_EQ(split[2].pairs, (std::vector<Eigen::Index>{3, 4}));
-  EXPECT_EQ(split[3].pairs, (std::vector<Eigen::Index>{2}));
-  // Pair 1's own normal is -z (no stronger pair in its zone to align with).
-  EXPECT_LE((split[1].normal - Eigen::Vector3d(0, 0, -1)).norm(), 1e-12);
-  // active_fraction 0 admits the tiny positive force (a third zone), never the negative one.
-  const std::vector<ContactZone> all = contact_zones(gaps, x, z.forces, 0.5, 0.0);
-  ASSERT_EQ(all.size(), 3u);
-  EXPECT_EQ(all[2].pairs, (std::vector<Eigen::Index>{5}));
-  // No force at all: no zone.
-  EXPECT_TRUE(contact_zones(gaps, x, Eigen::VectorXd::Zero(7), 0.5).empty());
-  // The normal test: zone B's two normals differ by exactly 0.2 rad, zone A's by 0 (+z, -z).
-  EXPECT_EQ(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.21).size(), 2u);
-  const std::vector<ContactZone> by_normal = contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.19);
-  ASSERT_EQ(by_normal.size(), 3u);
-  EXPECT_EQ(by_normal[0].pairs, (std::vector<Eigen::Index>{0, 1, 2}));
-  EXPECT_EQ(by_normal[1].pairs, (std::vector<Eigen::Index>{3}));
-  EXPECT_EQ(by_normal[2].pairs, (std::vector<Eigen::Index>{4}));
-  EXPECT_NEAR(contact_plane_angle({by_normal[1], by_normal[2]}), 0.2, 1e-12);
-  EXPECT_THROW(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 0.0), std::invalid_argument);
-  EXPECT_THROW(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 2.0), std::invalid_argument);
-}
-
-// A mollified edge-edge pair pushes with multiplier * mollifier (ContactPairGeometry), and
-// that is the force a zone sums and weights its normal with. Edge P along x at height 0.3
-// over edge Q at angle alpha = 0.02 in z = 0 (both of length 2): r = sin^2(alpha) / 1e-3 =
-// 0.4, m = (2 - r) r = 0.64 (tests/contact). In the same zone a point over a triangle whose
-// plane is tilted by beta = 0.4 about y.
-TEST(ContactZones, MollifiedEdgePairCountsWithItsForceNotItsMultiplier) {
-  const double alpha = 0.02, beta = 0.4;
-  const Eigen::Vector3d nt(std::sin(beta), 0.0, std::cos(beta)),
-      t1(std::cos(beta), 0.0, -std::sin(beta)), t2(0.0, 1.0, 0.0), c0(0.0, 0.5, 0.0);
-  Eigen::MatrixX3d points(8, 3);
-  points.row(0) << -1, 0, 0.3;
-  points.row(1) << 1, 0, 0.3;
-  points.row(2) << -std::cos(alpha), -std::sin(alpha), 0;
-  points.row(3) << std::cos(alpha), std::sin(alpha), 0;
-  points.row(4) = c0.transpose();
-  points.row(5) = (c0 + t1).transpose();
-  points.row(6) = (c0 + t2).transpose();
-  points.row(7) = (c0 + 0.2 * t1 + 0.3 * t2 + 0.3 * nt).transpose();
-  Eigen::MatrixX3i triangles(1, 3);
-  triangles << 4, 5, 6;
-  Eigen::MatrixX2i edges(2, 2);
-  edges << 0, 1, 2, 3;
-  const ContactProxy proxy = identity_proxy(points, triangles, edges);
-  ContactCandidates pairs;
-  pairs.vertex_triangle.resize(1, 2);
-  pairs.vertex_triangle << 7, 0;
-  pairs.edge_edge.resize(1, 2);
-  pairs.edge_edge << 0, 1;
-  const Eigen::VectorXd x = flatten(points);
-  ContactGapConstraints gaps(proxy, pairs, 0.3, x.size());
-  const double r = std::pow(std::sin(alpha), 2) / 1e-3;
-  const double m = (2.0 - r) * r;
-  ASSERT_NEAR(gaps.pair_geometry(x, 1).mollifier, m, 1e-14);
-  const Eigen::Vector2d multipliers(0.5, 1.0);  // vertex-triangle, edge-edge
-  const std::vector<ContactZone> zones = contact_zones(gaps, x, multipliers, 1.0);
-  ASSERT_EQ(zones.size(), 1u);
-  EXPECT_NEAR(zones[0].force, 0.5 + m, 1e-14);
-  const Eigen::Vector3d normal = (m * Eigen::Vector3d(0, 0, 1) + 0.5 * nt).normalized();
-  EXPECT_LE((zones[0].normal - normal).norm(), 1e-12) << zones[0].normal.transpose();
-  // The active test compares forces too: at active_fraction 0.7 the point pair (0.5) stays
-  // active against the largest force 0.64 (threshold 0.448), though it would not against the
-  // largest multiplier 1.0 (threshold 0.7).
-  const std::vector<ContactZone> strong = contact_zones(gaps, x, multipliers, 1.0, 0.7);
-  ASSERT_EQ(strong.size(), 1u);
-  EXPECT_EQ(strong[0].pairs, (std::vector<Eigen::Index>{0, 1}));
-}
-
-TEST(ContactZones, PlaneAngleOfHandMadeZones) {
-  ContactZone a, b;
-  a.normal = Eigen::Vector3d(0, 0, 1);
-  EXPECT_TRUE(std::isnan(contact_plane_angle({})));
-  EXPECT_TRUE(std::isnan(contact_plane_angle({a})));
-  for (const double gamma : {0.0, 0.3, kPi / 2, 2.0, kPi}) {
-    b.normal = Eigen::Vector3d(std::sin(gamma), 0.0, std::cos(gamma));
-    // Planes, not normals: gamma and pi - gamma are the same pair of planes.
-    const double expected = gamma <= kPi / 2 ? gamma : kPi - gamma;
-    // acos loses accuracy only near 0 (dot = 1): 1e-7 there, 1e-12 elsewhere.
-    EXPECT_NEAR(contact_plane_angle({a, b}), expected,
-                expected < 0.1 || expected > kPi - 0.1 ? 1e-7 : 1e-12)
-        << gamma;
-  }
-}
-
-TEST(ContactZones, RejectsBadInput) {
-  const ZoneScene z;
-  const ContactProxy proxy = identity_proxy(z.points, z.triangles);
-  const Eigen::VectorXd x = flatten(z.points);
-  ContactGapConstraints gaps(proxy, z.pairs, 0.05, x.size());
-  auto message_of = [](auto&& call) {
-    try {
-      call();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("no exception");
-  };
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(message_of([&] {
-              contact_zones(gaps, x, Eigen::VectorXd::Ones(6), 0.5);
-            }).find("forces has 6"),
-            std::string::npos);
-  for (const double bad : {0.0, -1.0, nan})
-    EXPECT_NE(message_of([&] { contact_zones(gaps, x, z.forces, bad); }).find("link_distance"),
-              std::string::npos)
-        << bad;
-  for (const double bad : {-0.1, nan})
-    EXPECT_NE(
-        message_of([&] { contact_zones(gaps, x, z.forces, 0.5, bad); }).find("active_fraction"),
-        std::string::npos)
-        << bad;
-}
-
-// ---------------------------------------------------------------------------------------
-// (6) Bad options are rejected with a message naming the option.
+// (5) Bad options are rejected with a message naming the option.
 TEST(ContactEquilibrium, RejectsBadOptions) {
   TwoStrips s;
   const Eigen::VectorXd x0 = s.state(4.0 * TwoStrips::kH, 0.0);

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "solvers/contact/contact_equilibrium.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/contact/contact_free_cone.hpp"
 #include "tests/support/grown_disc.hpp"
 

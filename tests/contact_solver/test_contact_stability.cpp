@@ -27,6 +27,7 @@
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_stability.hpp"

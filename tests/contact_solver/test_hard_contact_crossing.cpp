@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "libshell/contact/contact_candidates.hpp"
+#include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/contact/hard_contact_crossing.hpp"
 #include "support/grown_disc.hpp"

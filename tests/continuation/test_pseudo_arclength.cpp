@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libshell/analysis/rim_folds.hpp"
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"

@@ -14,9 +14,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
-#include "solvers/continuation/parametrized_objective.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/continuation/symmetric_subspace_family.hpp"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "solvers/newton/sparse_objective.hpp"
+#include "core/sparse_objective.hpp"
 #include "support/dense_symmetric.hpp"
 
 namespace growshell {

@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/sparse_objective.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 
 namespace growshell {
 namespace {

@@ -1,24 +1,14 @@
 #pragma once
 /// \file
-/// A one-parameter family of energies E(x; lambda), the input of continuation.
+/// The shell energy as a one-parameter family in the excess angle, the input of continuation.
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
+#include "core/parametrized_objective.hpp"
 #include "libshell/assembly/shell_model.hpp"
-#include "solvers/newton/sparse_objective.hpp"
 
 namespace growshell {
-
-/// E(x; lambda) with the SparseObjective interface at the current lambda, plus the parameter
-/// and d(gradient)/d(lambda).
-class ParametrizedObjective : public SparseObjective {
- public:
-  /// Sets lambda for subsequent evaluations.
-  virtual void set_parameter(double lambda) = 0;
-  virtual double parameter() const = 0;
-  /// d(gradient)/d(lambda) at x and the current lambda.
-  virtual Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) = 0;
-};
 
 /// The shell energy as a family in the excess angle phi_e (radians). Holds a reference to the
 /// model, which must outlive it.

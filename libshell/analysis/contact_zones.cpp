@@ -1,4 +1,4 @@
-#include "solvers/contact/contact_zones.hpp"
+#include "libshell/analysis/contact_zones.hpp"
 
 #include <algorithm>
 #include <cmath>
