@@ -195,8 +195,12 @@ TEST(RingDiscMesh, AnnulusKeepsOneCountBetweenItsTwoRimCircles) {
   for (int v = 0; v < sheet.vertices.rows(); ++v) {
     EXPECT_FALSE(topo.is_boundary_vertex(v));
     const double r = mesh.vertices.row(v).norm();
-    if (v < 64) EXPECT_NEAR(r, 0.5, 1e-15) << "inner rim vertex " << v;
-    if (v >= 64 * 7) EXPECT_NEAR(r, 1.0, 1e-15) << "outer rim vertex " << v;
+    if (v < 64) {
+      EXPECT_NEAR(r, 0.5, 1e-15) << "inner rim vertex " << v;
+    }
+    if (v >= 64 * 7) {
+      EXPECT_NEAR(r, 1.0, 1e-15) << "outer rim vertex " << v;
+    }
   }
   for (Eigen::Index g = sheet.vertices.rows(); g < mesh.vertices.rows(); ++g) {
     EXPECT_TRUE(topo.is_boundary_vertex(static_cast<int>(g)));
