@@ -17,30 +17,15 @@
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "tests/support/identity_proxy.hpp"
 
 namespace growshell {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Identity proxy: the unknowns are the points themselves.
-ContactProxy identity_proxy(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles,
-                            const Eigen::MatrixX2i& edges = Eigen::MatrixX2i(0, 2)) {
-  ContactProxy proxy;
-  const Eigen::Index n = 3 * points.rows();
-  proxy.map.resize(n, n);
-  proxy.map.setIdentity();
-  proxy.triangles = triangles;
-  proxy.edges = edges;
-  proxy.reference_positions = points;
-  return proxy;
-}
-
-Eigen::VectorXd flatten(const Eigen::MatrixX3d& points) {
-  Eigen::VectorXd x(3 * points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) x.segment<3>(3 * i) = points.row(i).transpose();
-  return x;
-}
+using test_support::flatten;
+using test_support::identity_proxy;
 
 // Zone A: three points over and under a large triangle in z = 0 (normals +z, -z, +z), their
 // contact points 0.41 and 0.40 m apart in a chain (0.8 m end to end), linked at 0.5 m.

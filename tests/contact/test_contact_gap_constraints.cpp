@@ -21,6 +21,7 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "support/dense_symmetric.hpp"
 #include "support/sheet_states.hpp"
+#include "tests/support/identity_proxy.hpp"
 
 namespace growshell {
 namespace {
@@ -30,24 +31,8 @@ using test_support::folded_sheet;
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// A proxy whose map is the identity: the unknowns are the points themselves (3 i + c).
-ContactProxy identity_proxy(const Eigen::MatrixX3d& points, const Eigen::MatrixX3i& triangles,
-                            const Eigen::MatrixX2i& edges) {
-  ContactProxy proxy;
-  const Eigen::Index n = 3 * points.rows();
-  proxy.map.resize(n, n);
-  proxy.map.setIdentity();
-  proxy.triangles = triangles;
-  proxy.edges = edges;
-  proxy.reference_positions = points;
-  return proxy;
-}
-
-Eigen::VectorXd flatten(const Eigen::MatrixX3d& points) {
-  Eigen::VectorXd x(3 * points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) x.segment<3>(3 * i) = points.row(i).transpose();
-  return x;
-}
+using test_support::flatten;
+using test_support::identity_proxy;
 
 /// The folded-disc scene shared by the tests: a 5-ring unit disc (proxy spacing about 0.12 m)
 /// folded about its diameter X = 0 with a 0.08 m gap between the layers (fold radius 0.04 m),
