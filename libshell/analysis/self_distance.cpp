@@ -40,13 +40,10 @@ struct Best {
 Samples sample_limit_surface(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x, int n,
                              const SelfDistanceOptions& options) {
   const Eigen::Index num_vertices = x.size() / 3;
-  using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   // The limit positions at every element's lattice points, current and reference.
   const ElementLatticeSampling& lattice = model.lattice_sampling(n);
-  const Eigen::MatrixX3d current =
-      lattice.positions(Eigen::Map<const RowMajorX3>(x.data(), num_vertices, 3));
-  const Eigen::MatrixX3d reference = lattice.positions(
-      Eigen::Map<const RowMajorX3>(model.reference_positions().data(), num_vertices, 3));
+  const Eigen::MatrixX3d current = lattice.state_positions(x);
+  const Eigen::MatrixX3d& reference = lattice.reference_positions();
   Samples s;
   const auto per_element = static_cast<std::size_t>((n + 1) * (n + 2) / 2);
   s.current.reserve(per_element * static_cast<std::size_t>(model.num_elements()));

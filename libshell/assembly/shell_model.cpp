@@ -392,7 +392,10 @@ const ElementLatticeSampling& ShellModel::lattice_sampling(int n) const {
   auto& slot = lattice_sampling_->by_subdivisions[n];
   if (!slot) {
     try {
-      slot = std::make_unique<const ElementLatticeSampling>(patches_, topology_.num_vertices(), n);
+      const Eigen::MatrixX3d reference =
+          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+              reference_x_.data(), topology_.num_vertices(), 3);
+      slot = std::make_unique<const ElementLatticeSampling>(patches_, reference, n);
     } catch (...) {
       lattice_sampling_->by_subdivisions.erase(n);
       throw;

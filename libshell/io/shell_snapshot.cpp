@@ -28,9 +28,7 @@ SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const E
     }
   } else {
     const ElementLatticeSampling& lattice = model.lattice_sampling(r);
-    const Eigen::MatrixX3d positions = lattice.positions(
-        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-            x.data(), x.size() / 3, 3));
+    const Eigen::MatrixX3d positions = lattice.state_positions(x);
     const int per_element = (r + 1) * (r + 2) / 2;
     s.points.resize(n_el * per_element, 3);
     s.triangles.resize(n_el * sub, 3);

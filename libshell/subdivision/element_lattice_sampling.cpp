@@ -8,9 +8,12 @@
 
 namespace growshell {
 
-ElementLatticeSampling::ElementLatticeSampling(const ElementPatches& patches,
-                                               Eigen::Index num_vertices, int n)
-    : n_(n), num_elements_(static_cast<Eigen::Index>(patches.patch.size())), num_vertices_(num_vertices) {
+ElementLatticeSampling::ElementLatticeSampling(
+    const ElementPatches& patches, const Eigen::Ref<const Eigen::MatrixX3d>& reference_control, int n)
+    : n_(n),
+      num_elements_(static_cast<Eigen::Index>(patches.patch.size())),
+      num_vertices_(reference_control.rows()) {
+  const Eigen::Index num_vertices = num_vertices_;
   if (n < 1)
     throw std::invalid_argument("ElementLatticeSampling: n = " + std::to_string(n) +
                                 " subdivisions per edge must be >= 1");
@@ -37,6 +40,7 @@ ElementLatticeSampling::ElementLatticeSampling(const ElementPatches& patches,
   }
   basis_.resize(num_elements_ * points_per_element(), num_vertices);
   basis_.setFromTriplets(entries.begin(), entries.end());
+  reference_ = basis_ * reference_control;
 }
 
 Eigen::MatrixX3d ElementLatticeSampling::positions(const Eigen::Ref<const Eigen::MatrixX3d>& control) const {
@@ -44,6 +48,15 @@ Eigen::MatrixX3d ElementLatticeSampling::positions(const Eigen::Ref<const Eigen:
     throw std::invalid_argument("ElementLatticeSampling::positions: " + std::to_string(control.rows()) +
                                 " control points for a mesh of " + std::to_string(num_vertices_));
   return basis_ * control;
+}
+
+Eigen::MatrixX3d ElementLatticeSampling::state_positions(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (x.size() != 3 * num_vertices_)
+    throw std::invalid_argument("ElementLatticeSampling::state_positions: a state of " +
+                                std::to_string(x.size()) + " entries for a mesh of " +
+                                std::to_string(num_vertices_) + " control points");
+  return basis_ * Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+                      x.data(), num_vertices_, 3);
 }
 
 }  // namespace growshell

@@ -20,10 +20,13 @@ namespace growshell {
 /// `patches`, and the map from control positions to their limit positions.
 class ElementLatticeSampling {
  public:
-  /// Evaluates every element's basis at its (n + 1)(n + 2) / 2 lattice points (n >= 1;
-  /// num_vertices: the rows of the control positions). Throws std::invalid_argument for
-  /// n < 1 and, as evaluate_patch_basis, for a patch whose faces do not surround its corners.
-  ElementLatticeSampling(const ElementPatches& patches, Eigen::Index num_vertices, int n);
+  /// Evaluates every element's basis at its (n + 1)(n + 2) / 2 lattice points (n >= 1), and the
+  /// reference limit positions there from `reference_control` (one row per control vertex, m).
+  /// Throws std::invalid_argument for n < 1, for a patch that refers to a vertex outside
+  /// reference_control and, as evaluate_patch_basis, for a patch whose faces do not surround
+  /// its corners.
+  ElementLatticeSampling(const ElementPatches& patches,
+                         const Eigen::Ref<const Eigen::MatrixX3d>& reference_control, int n);
 
   int subdivisions() const { return n_; }
   int points_per_element() const { return (n_ + 1) * (n_ + 2) / 2; }
@@ -40,11 +43,18 @@ class ElementLatticeSampling {
   /// j / n).position up to the order of summation (a few ulps).
   Eigen::MatrixX3d positions(const Eigen::Ref<const Eigen::MatrixX3d>& control) const;
 
+  /// The same for a state x given as one vector, vertex-major (x[3 v + c], as ShellModel).
+  Eigen::MatrixX3d state_positions(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// The limit positions of the reference at every lattice point, computed once.
+  const Eigen::MatrixX3d& reference_positions() const { return reference_; }
+
  private:
   int n_;
   Eigen::Index num_elements_;
   Eigen::Index num_vertices_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> basis_;  // lattice points x control points
+  Eigen::MatrixX3d reference_;
 };
 
 }  // namespace growshell

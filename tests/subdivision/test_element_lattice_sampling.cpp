@@ -32,9 +32,14 @@ TEST(ElementLatticeSampling, EqualsTheLimitSurfaceAtEveryLatticePoint) {
     for (int c = 0; c < 3; ++c) x(i, c) += normal(rng);
   for (const int n : {1, 3}) {
     SCOPED_TRACE("n = " + std::to_string(n));
-    const ElementLatticeSampling lattice(patches, mesh.vertices.rows(), n);
+    const ElementLatticeSampling lattice(patches, mesh.vertices, n);
     EXPECT_EQ(lattice.points_per_element(), (n + 1) * (n + 2) / 2);
     const Eigen::MatrixX3d p = lattice.positions(x);
+    // The flat, vertex-major form of the same state, and the reference computed once.
+    Eigen::VectorXd flat(3 * x.rows());
+    for (Eigen::Index v = 0; v < x.rows(); ++v) flat.segment<3>(3 * v) = x.row(v).transpose();
+    EXPECT_EQ(lattice.state_positions(flat), p);
+    EXPECT_EQ(lattice.reference_positions(), lattice.positions(mesh.vertices));
     ASSERT_EQ(p.rows(), static_cast<Eigen::Index>(patches.patch.size()) * lattice.points_per_element());
     Eigen::Index expected_row = 0;
     double worst = 0.0;
@@ -62,17 +67,23 @@ TEST(ElementLatticeSampling, RejectsBadInputByName) {
   const TriangleMesh mesh = make_ring_disc_mesh(o);
   const ElementPatches patches = build_element_patches(MeshTopology(mesh));
   try {
-    ElementLatticeSampling(patches, mesh.vertices.rows(), 0);
+    ElementLatticeSampling(patches, mesh.vertices, 0);
     FAIL() << "n = 0 accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("n = 0 subdivisions per edge must be >= 1"), std::string::npos);
   }
-  const ElementLatticeSampling lattice(patches, mesh.vertices.rows(), 2);
+  const ElementLatticeSampling lattice(patches, mesh.vertices, 2);
   try {
     lattice.positions(Eigen::MatrixX3d::Zero(mesh.vertices.rows() - 1, 3));
     FAIL() << "a state of the wrong size accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("control points for a mesh of"), std::string::npos);
+  }
+  try {
+    lattice.state_positions(Eigen::VectorXd::Zero(3 * mesh.vertices.rows() + 1));
+    FAIL() << "a flat state of the wrong size accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("entries for a mesh of"), std::string::npos);
   }
 }
 
