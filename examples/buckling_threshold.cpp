@@ -17,6 +17,7 @@
 
 #include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/scene_command_line.hpp"
 #include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
@@ -50,12 +51,10 @@ int run(int argc, char** argv) {
   Scene base = default_scene();
   apply_override(base, "mesh.family", family);
   const bool lattice = base.mesh.family == MeshFamily::Lattice;
-  if (lattice && !cl.text("--size-slope", "").empty())
-    throw std::invalid_argument("--size-slope sets the resolution of the rings and gmsh families; "
-                                "the lattice family's is --rings");
-  if (!lattice && !cl.text("--rings", "").empty())
-    throw std::invalid_argument("--rings sets the resolution of the lattice family (--mesh "
-                                "lattice); this family's is --size-slope");
+  for (const char* option : {"--size-slope", "--rings"}) {
+    const std::string value = cl.text(option, "");
+    if (!value.empty()) examples::require_family_reads(base, option, value);
+  }
   const std::vector<double> resolutions =
       lattice ? parse_list(cl.text("--rings", "12,24")) : parse_list(cl.text("--size-slope", "0.25,0.1"));
   const int modes = cl.integer("--modes", 2);

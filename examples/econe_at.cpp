@@ -65,16 +65,13 @@ int run(int argc, char** argv) {
     return 0;
   }
   const auto set = [&](const char* option, const char* key) {
-    const std::string v = cl.text(option, "");
-    if (!v.empty()) apply_override(scene, key, v);
+    examples::apply_option(scene, cl, option, key);
   };
   set("--h", "thickness");
   examples::apply_mesh_options(scene, cl);
   const std::string grading = cl.text("--grading", "");
   if (!grading.empty()) {
-    if (scene.mesh.family != MeshFamily::Lattice)
-      throw std::invalid_argument("--grading " + grading + " is the lattice family's grading "
-                                  "(--mesh lattice)");
+    examples::require_family_reads(scene, "--grading", grading);
     apply_override(scene, "mesh.grading_exponent", grading);
   }
   set("--min-spacing", "mesh.min_spacing");

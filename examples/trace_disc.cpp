@@ -80,8 +80,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   const auto set = [&](const char* option, const char* key) {
-    const std::string v = cl.text(option, "");
-    if (!v.empty()) apply_override(scene, key, v);
+    examples::apply_option(scene, cl, option, key);
   };
   const std::string inner = cl.text("--inner-radius", "");
   if (!inner.empty()) {

@@ -29,28 +29,46 @@ inline SceneCommandLine read_scene_command_line(int argc, char** argv) {
   return {std::move(scene), CommandLine(static_cast<int>(rest.size()), rest.data())};
 }
 
+/// Sets scene key `key` from the text of `option`, if the option is given (apply_override).
+inline void apply_option(Scene& scene, CommandLine& cl, const char* option, const char* key) {
+  const std::string value = cl.text(option, "");
+  if (!value.empty()) apply_override(scene, key, value);
+}
+
+/// Throws std::invalid_argument unless the scene's mesh family reads the mesh option `option`,
+/// given as `value` (a silently ignored option would run another mesh than asked): --rings and
+/// --grading belong to the lattice family, --size-slope to the rings and gmsh families.
+inline void require_family_reads(const Scene& scene, const std::string& option,
+                                 const std::string& value) {
+  const MeshFamily family = scene.mesh.family;
+  if (option == "--size-slope") {
+    if (family == MeshFamily::Rings || family == MeshFamily::Gmsh) return;
+    throw std::invalid_argument("--size-slope " + value + " sets the resolution of mesh.family = "
+                                "rings or gmsh; this scene's family does not read it");
+  }
+  if (family == MeshFamily::Lattice) return;
+  const bool rings = option == "--rings";
+  throw std::invalid_argument(option + " " + value + " sets the " +
+                              (rings ? "resolution" : "grading") +
+                              " of mesh.family = lattice (--mesh lattice); this scene's family " +
+                              (rings ? "sets it" : "grades its mesh") +
+                              " with mesh.size_slope (--size-slope)");
+}
+
 /// Applies the mesh options that are given, in this order: `--mesh FAMILY` (mesh.family),
 /// `--size-slope C` (mesh.size_slope) and `--rings N` (the lattice family's resolution:
-/// mesh.rings for a disc, mesh.radial_layers for a ring). Throws std::invalid_argument for a
-/// resolution option that the scene's family does not read (a silently ignored option would run
-/// another mesh than asked): --rings with a family other than lattice, --size-slope with the
-/// lattice or file family.
+/// mesh.rings for a disc, mesh.radial_layers for a ring). Throws as require_family_reads for a
+/// resolution option that the scene's family does not read.
 inline void apply_mesh_options(Scene& scene, CommandLine& cl) {
-  const std::string family = cl.text("--mesh", "");
-  if (!family.empty()) apply_override(scene, "mesh.family", family);
+  apply_option(scene, cl, "--mesh", "mesh.family");
   const std::string slope = cl.text("--size-slope", "");
   if (!slope.empty()) {
-    if (scene.mesh.family != MeshFamily::Rings && scene.mesh.family != MeshFamily::Gmsh)
-      throw std::invalid_argument("--size-slope " + slope + " sets the resolution of mesh.family = "
-                                  "rings or gmsh; this scene's family does not read it");
+    require_family_reads(scene, "--size-slope", slope);
     apply_override(scene, "mesh.size_slope", slope);
   }
   const std::string rings = cl.text("--rings", "");
   if (!rings.empty()) {
-    if (scene.mesh.family != MeshFamily::Lattice)
-      throw std::invalid_argument("--rings " + rings + " sets the resolution of mesh.family = "
-                                  "lattice (--mesh lattice); this scene's family sets it with "
-                                  "mesh.size_slope (--size-slope)");
+    require_family_reads(scene, "--rings", rings);
     apply_override(scene,
                    scene.geometry.shape == SceneShape::Ring ? "mesh.radial_layers" : "mesh.rings",
                    rings);
