@@ -39,14 +39,17 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
                       raise it where a nearly broken symmetry bends the branch sharply
   --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
   --eigenmodes K      at each special point write the K lowest eigenmodes (default 2; 0 = off)
-  --symmetric-subspace 1  trace the cone among the states with the mirrors of its folds (y -> -y,
-                      and x -> -x for an even number of folds): the trace cannot turn onto a
-                      branch that breaks them, e.g. at the symmetric cone's loss of stability;
-                      the stability index is still the full Hessian's (default 0; a mesh
-                      without the mirrors, e.g. a ring, or a resumed state off them is traced
-                      in the full space, with a note)
+  --symmetric-subspace 0|1  trace the cone among the states with the mirrors of its folds
+                      (y -> -y, and x -> -x for an even number of folds): the trace cannot turn
+                      onto a branch that breaks them, e.g. at the symmetric cone's loss of
+                      stability, nor let the pattern drift about the axis; the stability index
+                      is still the full Hessian's (default 1; a mesh without the mirrors, e.g.
+                      gmsh, or a resumed state off them is traced in the full space, with a note)
   --symmetry-threshold D  S4 defect (dimensionless, see below) above which the event
                       symmetry_lost is written, once, at the first such point (default 1e-3)
+  --index-excludes-pattern-turn 0  count the cone's stability index with the pattern's turn
+                      about the axis, a neutral mode that the mesh leaves nearly neutral of
+                      either sign (default 1: without it)
   --out DIR           output directory (default: the scene's output.directory)
 For the two-fold cone (--mode 2) branch.csv also holds s4_defect, the distance of the state
 from its improper quarter-turn symmetry S4 (rms over the sheet vertices, over R; exact on a
@@ -102,6 +105,7 @@ int run(int argc, char** argv) {
     apply_override(scene, "study.eigenmodes", std::to_string(cl.integer("--eigenmodes", 0)));
   set_flag(scene, cl, "--symmetric-subspace", "study.symmetric_subspace");
   set_number(scene, cl, "--symmetry-threshold", "study.symmetry_threshold");
+  set_flag(scene, cl, "--index-excludes-pattern-turn", "study.index_excludes_pattern_turn");
   const std::string resume = cl.text("--resume", "");
   cl.reject_unknown();
   validate_scene(scene);

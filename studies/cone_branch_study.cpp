@@ -19,12 +19,14 @@
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
+#include "solvers/stability/hessian_negative_count.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_events.hpp"
 #include "studies/cone_branch_key_values.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/cone_sample_measures.hpp"
+#include "studies/pattern_rotation.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/special_point_modes.hpp"
 #include "studies/study_directory.hpp"
@@ -100,6 +102,7 @@ class ConeBranchRun {
   void on_special(const SpecialPoint& sp);
   void on_event(const LocatedEvent& e);
   void snapshot(double phi, const Eigen::VectorXd& x, const std::string& name);
+  int index_without_pattern_turn(const BranchSample& s);
   BranchTrace trace_cone(const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
                          double dphi);
   bool trace_from_flat(BranchTrace& trace);
@@ -116,6 +119,7 @@ class ConeBranchRun {
   std::unique_ptr<ShellGrowthFamily> family_;
   std::vector<Eigen::Index> pinned_;
   std::shared_ptr<const SymmetricSubspace> subspace_;
+  std::unique_ptr<HessianNegativeCount> full_count_;  ///< index_excludes_pattern_turn
   ArclengthOptions arclength_;
   std::unique_ptr<ConeSampleMeasurer> measures_;
   std::vector<BranchEvent> events_;
@@ -183,6 +187,8 @@ void ConeBranchRun::set_up() {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
   family_ = std::make_unique<ShellGrowthFamily>(*model_);
+  if (options_.index_excludes_pattern_turn)
+    full_count_ = std::make_unique<HessianNegativeCount>(*family_, pinned_);
   if (options_.symmetric_subspace) {
     ConeSubspaceChoice choice =
         cone_mirror_subspace(*model_, scene_.geometry.radius, scene_.continuation.mode);
@@ -342,15 +348,31 @@ void ConeBranchRun::snapshot(double phi, const Eigen::VectorXd& x, const std::st
   record_->add_snapshot(phi, name, shell_snapshot(*model_, x, 2));
 }
 
+/// The stability index of a full cone state without the pattern's turn: the pinned Hessian's
+/// negative count on the hyperplane orthogonal to the turn; the plain count where the state
+/// is axisymmetric to within 1e-9 R (no pattern, so nothing to turn).
+int ConeBranchRun::index_without_pattern_turn(const BranchSample& s) {
+  family_->set_parameter(s.parameter);
+  const int full = full_count_->at(s.x);
+  const Eigen::VectorXd turn = pattern_rotation(*model_, s.x, pinned_);
+  if (turn.lpNorm<Eigen::Infinity>() <= 1e-9 * scene_.geometry.radius) return full;
+  return full_count_->negative_orthogonal_to(turn);
+}
+
 /// The cone branch, in the subspace if there is one (full states in and out either way).
 BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
                                       const Eigen::VectorXd& dx, double dphi) {
   const auto sample = [this](const BranchSample& s) { on_sample(s); };
   const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
   const auto event = [this](const LocatedEvent& e) { on_event(e); };
+  ArclengthOptions options = arclength_;
+  if (full_count_)
+    options.stability_index = [this](const BranchSample& s) {
+      return index_without_pattern_turn(s);
+    };
   return subspace_ ? trace_branch_in_subspace(*family_, *subspace_, x0, phi0, dx, dphi, pinned_,
-                                              arclength_, sample, special, events_, event)
-                   : trace_branch_along(*family_, x0, phi0, dx, dphi, pinned_, arclength_, sample,
+                                              options, sample, special, events_, event)
+                   : trace_branch_along(*family_, x0, phi0, dx, dphi, pinned_, options, sample,
                                         special, events_, event);
 }
 
@@ -421,10 +443,11 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
   out.failed_steps = trace.failed_steps;
   say(line_printf(
       "# cost: %.1f s wall, %d linearisations (assembly %.1f s), %d LDL^T "
-      "factorisations with inertia (%.1f s), %d solves (%.1f s), events %.1f s, "
-      "output %.1f s",
+      "factorisations with inertia (%.1f s), %d solves (%.1f s), %d stability indices (%.1f s), "
+      "events %.1f s, output %.1f s",
       wall, c.linearizations, c.assembly_seconds, c.factorizations, c.factorization_seconds,
-      c.solves, c.solve_seconds, c.event_seconds, c.callback_seconds));
+      c.solves, c.solve_seconds, c.stability_evaluations, c.stability_seconds, c.event_seconds,
+      c.callback_seconds));
   std::ostringstream cost;
   cost << std::setprecision(6) << "{\"wall_seconds\": " << wall
        << ", \"cone_steps\": " << trace.steps << ", \"failed_steps\": " << trace.failed_steps
@@ -432,7 +455,10 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
        << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
        << ", \"assembly_seconds\": " << c.assembly_seconds
        << ", \"factorization_seconds\": " << c.factorization_seconds
-       << ", \"solve_seconds\": " << c.solve_seconds << ", \"event_seconds\": " << c.event_seconds
+       << ", \"solve_seconds\": " << c.solve_seconds
+       << ", \"stability_evaluations\": " << c.stability_evaluations
+       << ", \"stability_seconds\": " << c.stability_seconds
+       << ", \"event_seconds\": " << c.event_seconds
        << ", \"output_seconds\": " << c.callback_seconds << "}\n";
   write_file_atomically(out_dir_ + "/cost.json", cost.str());
   say(line_printf("# trace ended: %s (%d steps, %d failed)", trace.message.c_str(), trace.steps,
@@ -485,6 +511,7 @@ ConeBranchStudyOptions cone_branch_study_options(const Scene& scene) {
   o.core_radius = scene.study.core_radius;
   o.eigenmodes = scene.study.eigenmodes;
   o.symmetric_subspace = scene.study.symmetric_subspace;
+  o.index_excludes_pattern_turn = scene.study.index_excludes_pattern_turn;
   o.symmetry_threshold = scene.study.symmetry_threshold;
   o.through_contact = scene.study.through_contact;
   return o;

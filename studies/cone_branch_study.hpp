@@ -50,7 +50,12 @@ struct ConeBranchStudyOptions {
   int eigenmodes = 2;
   /// Trace the cone among the states with its mirrors (falls back to the full space, with a
   /// note in the log, where the mesh or the start lacks them).
-  bool symmetric_subspace = false;
+  bool symmetric_subspace = true;
+  /// On the cone, count the stability index (n_negative, and so the special points) on the
+  /// hyperplane orthogonal to the pattern's turn (studies/pattern_rotation.hpp,
+  /// HessianNegativeCount::negative_orthogonal_to); on an axisymmetric state, which has no
+  /// pattern to turn, the plain count. The flat branch always takes the plain count.
+  bool index_excludes_pattern_turn = true;
   /// S4 defect (> 0) above which symmetry_lost is reported (two-fold cone only).
   double symmetry_threshold = 1e-3;
   /// Go on past the first contact instead of stopping there.

@@ -293,6 +293,9 @@ const Field kFields[] = {
   {"study.symmetric_subspace",
    [](Scene& s, const Json& v, const std::string& k) { s.study.symmetric_subspace = read_bool(v, k); },
    [](const Scene& s) { return Json(s.study.symmetric_subspace); }},
+  {"study.index_excludes_pattern_turn",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.index_excludes_pattern_turn = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.study.index_excludes_pattern_turn); }},
   {"study.symmetry_threshold",
    [](Scene& s, const Json& v, const std::string& k) { s.study.symmetry_threshold = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.symmetry_threshold); }},
@@ -525,7 +528,9 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 
 double resolved_min_spacing(const Scene& scene) {
   if (scene.mesh.min_spacing) return *scene.mesh.min_spacing;
-  return 0.5 * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const bool graded_by_size =
+      scene.mesh.family == MeshFamily::Rings || scene.mesh.family == MeshFamily::Gmsh;
+  return (graded_by_size ? 0.25 : 0.5) * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
 }
 
 double resolved_exclusion_radius(const Scene& scene) {

@@ -102,8 +102,9 @@ struct SceneMesh {
   /// smoothly towards the centre (see make_disc_mesh).
   double grading_exponent = 3.0;
   /// Smallest spacing (m) of the graded disc mesh at the centre, >= 0. Unset ("auto" in the
-  /// file) means half the thickness at the centre, resolved by resolved_min_spacing, so that
-  /// it follows a thickness override.
+  /// file) means a quarter of the thickness at the centre for the rings and gmsh families (the
+  /// floor at which the apex core is resolved, docs/results.md) and half of it for the
+  /// lattice, resolved by resolved_min_spacing, so that it follows a thickness override.
   std::optional<double> min_spacing;
   /// Element size per unit distance from the centre (rings and gmsh families), > 0: the size
   /// is clamp(size_slope r, min_spacing, size_max). The default 0.1 (64 vertices per ring of
@@ -195,8 +196,15 @@ struct SceneStudy {
   /// Number of lowest eigenmodes computed (and written) at each special point, >= 0.
   int eigenmodes = 2;
   /// Trace the cone among the states with the mirrors of its folds (docs/continuation.md,
-  /// "Symmetric subspace"); the stability index stays the full Hessian's.
-  bool symmetric_subspace = false;
+  /// "Symmetric subspace"); the stability index stays the full Hessian's. On by default: the
+  /// symmetric branch is then the one with the mirrors, whatever drift the neutral pattern
+  /// turn would take in the full space; a mesh without the mirrors (gmsh) is traced in the
+  /// full space, with a note.
+  bool symmetric_subspace = true;
+  /// Count the stability index without the pattern's turn about the growth axis: the neutral
+  /// mode of the axisymmetric sheet that a discrete mesh leaves only nearly neutral, of either
+  /// sign (docs/guide/cone_branch.md, "Stability index").
+  bool index_excludes_pattern_turn = true;
   /// S4 defect (dimensionless) above which the event symmetry_lost is reported, > 0.
   double symmetry_threshold = 1e-3;
   /// Radius (m) about the growth centre within which the sheet is left out of the gap and the
@@ -219,9 +227,10 @@ struct Scene {
 };
 
 /// The paper's disc: R = 1, h = 0.02, Y = 1e4 Pa, nu = 0.3, the rings mesh family with
-/// size_slope 0.1 and min_spacing h/2 (auto), quadrature degree 2, phi_e from 0 to 3.73 with steps in
+/// size_slope 0.1 and min_spacing h/4 (auto), quadrature degree 2, phi_e from 0 to 3.73 with steps in
 /// [1e-4, 0.1], mode 2, perturbation 1e-3 R with seed 1, output to "out"; the cone_branch
-/// study with tolerance 1e-6, tangent angle 0.3, 2 eigenmodes, full space, S4 threshold 1e-3,
+/// study with tolerance 1e-6, tangent angle 0.3, 2 eigenmodes, traced in the mirror subspace
+/// where the mesh has the mirrors, the index without the pattern's turn, S4 threshold 1e-3,
 /// no core left out, stopping at contact.
 Scene default_scene();
 
@@ -256,8 +265,8 @@ std::vector<std::string> scene_keys();
 /// Thickness h (m) of `profile` at distance r (m) from the centre of a sheet of radius R (m).
 double thickness_at_radius(const ThicknessProfile& profile, double r, double radius);
 
-/// The mesh's smallest spacing (m): mesh.min_spacing if set, else half the thickness at the
-/// centre (r = 0).
+/// The mesh's smallest spacing (m): mesh.min_spacing if set, else a quarter of the thickness
+/// at the centre (r = 0) for the rings and gmsh families and half of it for the others.
 double resolved_min_spacing(const Scene& scene);
 
 /// The contact exclusion radius (m): physics.contact_exclusion_radius if set, else pi h / 2

@@ -1,6 +1,8 @@
 #include "solvers/stability/hessian_negative_count.hpp"
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace growshell {
 
@@ -19,7 +21,34 @@ int HessianNegativeCount::at(const Eigen::Ref<const Eigen::VectorXd>& x) {
   factorization_.factorize(hessian_);
   if (factorization_.zero_pivots() > 0)
     throw std::runtime_error("HessianNegativeCount: the Hessian is singular (zero pivot)");
-  return factorization_.negative_eigenvalues();
+  negative_ = factorization_.negative_eigenvalues();
+  return negative_;
+}
+
+int HessianNegativeCount::negative_orthogonal_to(
+    const Eigen::Ref<const Eigen::VectorXd>& direction) const {
+  if (negative_ < 0)
+    throw std::logic_error("HessianNegativeCount::negative_orthogonal_to: call at(x) first");
+  if (direction.size() != hessian_.rows())
+    throw std::invalid_argument("HessianNegativeCount::negative_orthogonal_to: the direction has " +
+                                std::to_string(direction.size()) + " entries, the Hessian " +
+                                std::to_string(hessian_.rows()) + " rows");
+  if (!direction.allFinite())
+    throw std::invalid_argument(
+        "HessianNegativeCount::negative_orthogonal_to: the direction is not finite");
+  Eigen::VectorXd d = direction;
+  fixed_.zero_fixed(d);
+  if (fixed_.free_inf_norm(d) == 0.0)
+    throw std::invalid_argument(
+        "HessianNegativeCount::negative_orthogonal_to: the direction vanishes on the free dofs");
+  // The fixed dofs' rows and columns of the eliminated Hessian are zero off the diagonal, so
+  // with d zero there the solve is H_f^{-1} d on the free dofs and zero on the fixed ones.
+  const double schur = d.dot(factorization_.solve(d));
+  if (!std::isfinite(schur) || schur == 0.0)
+    throw std::runtime_error(
+        "HessianNegativeCount::negative_orthogonal_to: d^T H^-1 d is zero or not finite: the "
+        "Hessian restricted to the hyperplane is singular");
+  return schur < 0.0 ? negative_ - 1 : negative_;
 }
 
 }  // namespace growshell

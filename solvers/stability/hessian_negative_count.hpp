@@ -2,7 +2,10 @@
 /// \file
 /// The number of negative eigenvalues of an objective's Hessian with some dofs held fixed,
 /// from the inertia of a sparse LDL^T factorisation (exact on unstable states, where a
-/// Cholesky test only says "not definite"). Analysed once, factorised per state.
+/// Cholesky test only says "not definite"). Analysed once, factorised per state. The count
+/// can leave out one direction: that of the Hessian restricted to the hyperplane orthogonal
+/// to it, e.g. without a neutral mode that a continuous symmetry of the physics leaves free
+/// and the mesh only nearly so.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -25,11 +28,26 @@ class HessianNegativeCount {
   /// or is singular (a zero pivot: the count is then undefined).
   int at(const Eigen::Ref<const Eigen::VectorXd>& x);
 
+  /// Negative eigenvalues of the Hessian of the last at(), H_f (fixed dofs removed),
+  /// restricted to the free vectors orthogonal to `direction` (its fixed entries are
+  /// ignored): neg(H_f) - 1 if d^T H_f^{-1} d < 0, else neg(H_f), d the free part of
+  /// `direction`. Why: the bordered matrix K = [H_f d; d^T 0] has, by Haynsworth's inertia
+  /// additivity over the Schur complement -d^T H_f^{-1} d, In(K) = In(H_f) + In(-d^T H_f^{-1}
+  /// d), and by the bordered-matrix inertia theorem (reduced_hessian_inertia.hpp) neg(K) =
+  /// neg(H_f | d-perp) + 1. One solve with the factorisation at(x) already made. If d is
+  /// (close to) an eigenvector of an eigenvalue near zero, that eigenvalue's sign no longer
+  /// enters the count, while a crossing of any other eigenvalue does.
+  /// Throws std::logic_error before the first at(), std::invalid_argument if `direction` has
+  /// the wrong size, is not finite or vanishes on the free dofs, std::runtime_error if
+  /// d^T H_f^{-1} d is zero or not finite (the count is then undefined).
+  int negative_orthogonal_to(const Eigen::Ref<const Eigen::VectorXd>& direction) const;
+
  private:
   SparseObjective& objective_;
   Eigen::SparseMatrix<double> hessian_;
   FixedDofElimination fixed_;
   SymmetricIndefiniteFactorization factorization_;
+  int negative_ = -1;  ///< of the last at(); -1 before it
 };
 
 }  // namespace growshell

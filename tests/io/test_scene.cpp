@@ -68,7 +68,7 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.mesh.rings, 24);
   EXPECT_EQ(s.mesh.grading_exponent, 3.0);
   EXPECT_FALSE(s.mesh.min_spacing.has_value());
-  EXPECT_EQ(resolved_min_spacing(s), 0.01);  // h / 2, exact in binary up to one rounding
+  EXPECT_EQ(resolved_min_spacing(s), 0.005);  // h / 4 (rings), exact in binary up to one rounding
   EXPECT_EQ(s.mesh.quadrature_degree, 2);
   EXPECT_FALSE(s.physics.contact);
   EXPECT_FALSE(s.physics.contact_distance.has_value());
@@ -90,7 +90,8 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.study.tolerance, 1e-6);
   EXPECT_EQ(s.study.max_tangent_angle, 0.3);
   EXPECT_EQ(s.study.eigenmodes, 2);
-  EXPECT_FALSE(s.study.symmetric_subspace);
+  EXPECT_TRUE(s.study.symmetric_subspace);
+  EXPECT_TRUE(s.study.index_excludes_pattern_turn);
   EXPECT_EQ(s.study.symmetry_threshold, 1e-3);
   EXPECT_EQ(s.study.core_radius, 0.0);
   EXPECT_NO_THROW(validate_scene(s));
@@ -99,7 +100,11 @@ TEST(Scene, DefaultsAreThePapersDisc) {
 TEST(Scene, MinSpacingFollowsAThicknessOverride) {
   Scene s = default_scene();
   apply_override(s, "thickness", "0.005");
-  EXPECT_EQ(resolved_min_spacing(s), 0.0025);
+  EXPECT_EQ(resolved_min_spacing(s), 0.00125);  // h / 4 for the rings and gmsh families
+  apply_override(s, "mesh.family", "gmsh");
+  EXPECT_EQ(resolved_min_spacing(s), 0.00125);
+  apply_override(s, "mesh.family", "lattice");
+  EXPECT_EQ(resolved_min_spacing(s), 0.0025);  // h / 2 for the lattice
   apply_override(s, "mesh.min_spacing", "0.004");
   EXPECT_EQ(resolved_min_spacing(s), 0.004);
   apply_override(s, "mesh.min_spacing", "auto");
@@ -173,7 +178,7 @@ TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
   s.thickness = ConstantThickness{0.04};
   s.mesh.family = MeshFamily::Rings;
   const TriangleMesh rings = scene_mesh(s);
-  // The rings family has the quarter turn, faces included; its size floor is h / 2 = 0.02.
+  // The rings family has the quarter turn, faces included; its size floor is h / 4 = 0.01.
   EXPECT_NO_THROW(check_maps_faces_onto_faces(MeshTopology(rings), quarter_turn_symmetry(rings.vertices, 1e-9)));
   s.mesh.family = MeshFamily::Gmsh;
   s.mesh.size_slope = 0.3;
@@ -184,7 +189,7 @@ TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
   const std::string msh = (dir_ / "disc.msh").string();
   GmshDiscMeshOptions o;
   o.size_slope = 0.3;
-  o.size_floor = 0.02;
+  o.size_floor = 0.01;
   o.msh_file = msh;
   make_gmsh_disc_sheet(o);
   s.mesh.family = MeshFamily::File;
@@ -195,14 +200,14 @@ TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
 }
 
 // The default scene is meshed by the rings family: make_ring_disc_mesh with the default
-// size_slope 0.1 and the floor h/2; for a ring the same family makes the annulus.
+// size_slope 0.1 and the floor h/4; for a ring the same family makes the annulus.
 TEST(Scene, DefaultFamilyIsTheRingsMeshForDiscsAndRings) {
   Scene s = default_scene();
   EXPECT_EQ(s.mesh.family, MeshFamily::Rings);
   EXPECT_EQ(mesh_family_name(s.mesh.family), "rings");
   RingDiscMeshOptions o;
   o.size_slope = 0.1;
-  o.size_floor = 0.01;
+  o.size_floor = 0.005;
   const TriangleMesh disc = make_ring_disc_mesh(o);
   const TriangleMesh from_scene = scene_mesh(s);
   EXPECT_EQ(from_scene.faces, disc.faces);
@@ -304,7 +309,7 @@ TEST_F(SceneFileTest, PartialFileOverridesOnlyWhatItSets) {
   EXPECT_EQ(s.mesh.grading_exponent, 3.0);
   EXPECT_EQ(s.continuation.phi_max, 3.73);
   EXPECT_EQ(s.material.youngs_modulus, 1e4);
-  EXPECT_EQ(resolved_min_spacing(s), 0.0025);
+  EXPECT_EQ(resolved_min_spacing(s), 0.00125);
 }
 
 TEST(Scene, ExampleFileIsTheDefaultSceneInFull) {
@@ -576,7 +581,7 @@ TEST(SceneBuilders, LinearThicknessProfileEndValues) {
   EXPECT_NEAR(h(Eigen::Vector3d(-0.6, 0.8, 0.0)), 0.02, 1e-15);  // r = 1 = R/2: the mean
   EXPECT_NEAR(h(Eigen::Vector3d(2.1, 0.0, 0.0)), 0.01, 1e-15);    // clamped beyond the rim
   EXPECT_NEAR(thickness_at_radius(s.thickness, 1.0, 2.0), 0.02, 1e-15);
-  EXPECT_EQ(resolved_min_spacing(s), 0.015);  // half the centre thickness
+  EXPECT_EQ(resolved_min_spacing(s), 0.0075);  // a quarter of the centre thickness (rings)
 }
 
 TEST(SceneBuilders, SmallDiscSceneBuildsAValidShellModel) {

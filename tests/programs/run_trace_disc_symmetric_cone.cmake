@@ -1,14 +1,15 @@
 # The two-fold cone at h = 0.04 on the default mesh, which has the cone's symmetry (mesh.family =
-# rings, size_slope 0.1: both mirrors and the quarter turn), keeps its improper quarter-turn symmetry S4 (defect
-# < 1e-3) and its stability up to first contact (gap = h, at the apex core), as the h -> 0 cone
-# does; the hexagonal lattice disc loses S4 there (defect 1e-3 at phi_e = 4.3). This guards the
-# rings mesh's result; the later loss of stability near 6.2 that the lattice and Gmsh meshes
-# show and the rings mesh does not is open (docs/validation.md, "The symmetric cone").
+# rings, size_slope 0.1, core floor h/4: both mirrors and the quarter turn), traced by default
+# in the mirror subspace, keeps its improper quarter-turn symmetry S4 (defect < 1e-3) and its
+# stability (the index without the pattern's turn) up to first contact (gap = h, at the apex
+# core, 5.652), as the h -> 0 cone does; the hexagonal lattice disc loses S4 there (defect
+# 1e-3 at phi_e = 4.3). The eigenvalues show why the turn is left out of the index: it is the
+# lowest mode, odd under both mirrors, and slightly negative on this mesh.
 # Variables: PROGRAM (trace_disc), EIGEN_PROGRAM (branch_eigenvalues), OUT.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 file(WRITE "${OUT}/scene.json"
-     "{\"thickness\": 0.04, \"continuation\": {\"phi_max\": 6.2}}\n")
+     "{\"thickness\": 0.04, \"continuation\": {\"phi_max\": 5.8}}\n")
 execute_process(COMMAND "${PROGRAM}" "${OUT}/scene.json" --through-contact 1 --eigenmodes 0
                         --out "${OUT}/trace"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
@@ -52,11 +53,14 @@ endif()
 if(NOT events MATCHES "\"kind\": \"contact\", \"phi_e\": 5\\.[5-9]")
   message(FATAL_ERROR "no first contact between phi_e = 5.5 and 6:\n${events}")
 endif()
-# The lowest eigenvalues along the branch from 5.5 (branch_eigenvalues: H v = lambda M v, M the
-# lumped reference area, N/m^3): the lowest is the nearly free turn of the fold pattern
-# (measured 1.5e-3 falling to 8.7e-4), the next, the softest shape mode, stays positive
-# (measured 0.26 at 5.6 falling to 0.204 at 6.3): no mode of the cone comes near zero.
-execute_process(COMMAND "${EIGEN_PROGRAM}" "${OUT}/trace" --count 2 --from 5.5
+# The lowest eigenvalues along the branch from 5.0 to first contact (branch_eigenvalues:
+# H v = lambda M v, M the lumped reference area, N/m^3): the lowest is the nearly free turn of
+# the fold pattern, odd under both mirrors (parities measured -0.96 to -0.97), its eigenvalue
+# measured -1.1e-3 falling to -4.5e-3; the next, the softest shape mode, stays positive
+# (measured 0.248 at 5.0 falling to 0.155 at 5.59).
+string(REGEX MATCH "\"kind\": \"contact\", \"phi_e\": ([0-9.]+)" contact_match "${events}")
+set(phi_contact ${CMAKE_MATCH_1})
+execute_process(COMMAND "${EIGEN_PROGRAM}" "${OUT}/trace" --count 2 --from 5.0 --to ${phi_contact}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "branch_eigenvalues failed (${rc}):\n${log}\n${err}")
@@ -72,11 +76,14 @@ foreach(i RANGE 1 ${eigen_last})
   string(REPLACE "," ";" fields "${row}")
   list(GET fields 1 lambda1)
   list(GET fields 2 lambda2)
-  if(NOT lambda2 GREATER 0.15)
-    message(FATAL_ERROR "the softest shape mode is not above 0.15 N/m^3: ${row}")
+  list(GET fields 5 parity_x1)
+  list(GET fields 7 parity_y1)
+  if(NOT lambda2 GREATER 0.12)
+    message(FATAL_ERROR "the softest shape mode is not above 0.12 N/m^3 before contact: ${row}")
   endif()
-  if(lambda1 GREATER 5e-3 OR lambda1 LESS -5e-3)
-    message(FATAL_ERROR "the lowest eigenvalue is not the nearly free pattern turn: ${row}")
+  if(lambda1 GREATER 1e-2 OR lambda1 LESS -1e-2 OR NOT parity_x1 LESS -0.9 OR NOT parity_y1 LESS -0.9)
+    message(FATAL_ERROR "the lowest eigenvalue is not the nearly free pattern turn (small, odd "
+                        "under both mirrors): ${row}")
   endif()
 endforeach()
 # --rings is the lattice family's resolution: with the rings family it is refused by name.
