@@ -14,10 +14,12 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libshell/io/scene.hpp"
-#include "studies/cone_branch_study.hpp"
+#include "studies/parameter_sweep.hpp"
+#include "studies/scene_study.hpp"
 #include "studies/study_directory.hpp"
 
 extern char** environ;
@@ -27,13 +29,16 @@ namespace {
 using namespace growshell;
 namespace fs = std::filesystem;
 
-const char* kUsage = R"(usage: growshell run SCENE.json [--out DIR] [--resume | --overwrite]
-       growshell run --help
-       growshell --help
+const char* kUsage = R"(usage: growshell run SCENE.json [--out DIR] [--set KEY=VALUE ...] [--resume | --overwrite]
+       growshell sweep SCENE.json --out DIR --param KEY=V1,V2,... [--param ...]
+                       [--set KEY=VALUE ...] [--resume | --overwrite]
+       growshell run --help | growshell sweep --help | growshell --help
 
 Commands:
   run          run the study that SCENE.json names (its study.kind) and write its record,
                results.json and figure into DIR
+  sweep        run that study at every point of the product of the --param values, each
+               point into DIR/point_NNN, and gather DIR/sweep.json and DIR/sweep.csv
 
 Studies (scene key study.kind):
   cone_branch  the flat sheet grows to its first branch point of the n-fold mode
@@ -45,9 +50,13 @@ Studies (scene key study.kind):
 Scene files: docs/scenes.md (every key); examples/scenes/disc_h002.json (the default scene).
 )";
 
-const char* kRunUsage = R"(usage: growshell run SCENE.json [--out DIR] [--resume | --overwrite]
+const char* kRunUsage = R"(usage: growshell run SCENE.json [--out DIR] [--set KEY=VALUE ...] [--resume | --overwrite]
 Runs the study that SCENE.json names (study.kind) and writes into DIR.
   --out DIR    output directory (default: the scene's output.directory)
+  --set KEY=VALUE  sets one scene key (any key of docs/scenes.md, e.g. mesh.min_spacing=0.01
+               or thickness=0.02), after the file and in the order given; the value is JSON
+               for a number, boolean or array key, the text as is for a string key, auto where
+               the key has it. DIR/scene.json records the scene as run.
   --resume     continue the study recorded in DIR from its last complete saved state (the
                record goes on without repeating a row; the scene may differ from the recorded
                one only in continuation.phi_min, continuation.phi_max, output.*,
@@ -61,7 +70,7 @@ Studies (study.kind):
   cone_branch  scene keys: the sheet, mesh and material keys, continuation.mode, phi_start,
                phi_min, phi_max, max_step, min_step, study.through_contact, study.tolerance,
                study.max_tangent_angle, study.eigenmodes, study.symmetric_subspace,
-               study.symmetry_threshold, study.core_radius, output.snapshot_every,
+               study.index_excludes_pattern_turn, study.symmetry_threshold, study.core_radius, output.snapshot_every,
                output.write_vtk (docs/guide/cone_branch.md)
                writes DIR/results.json (the key values), branch.csv, events.json, states/,
                record.json, branch.pvd and VTK files, cost.json, scene.json and eb_hat.png
@@ -73,15 +82,37 @@ Exit status: 0 the study completed, 3 its trace ended early (results.json "end" 
 2 bad input.
 )";
 
-/// The parsed `growshell run` command line.
+const char* kSweepUsage = R"(usage: growshell sweep SCENE.json --out DIR --param KEY=V1,V2,... [--param ...]
+                       [--set KEY=VALUE ...] [--resume | --overwrite]
+Runs the study that SCENE.json names at every point of the cartesian product of the --param
+values (the first --param varying slowest), one process, point after point.
+  --out DIR    the sweep's directory (required)
+  --param KEY=V1,V2,...  a scene key and its values (commas inside [...] belong to a value)
+  --set KEY=VALUE  sets a scene key of every point (as for growshell run)
+  --resume     go on with the sweep recorded in DIR: the scene, --set and --param must be
+               those of DIR/sweep_plan.json; a point with results.json is not run again, a
+               point with a record and no results is resumed from its last saved state
+  --overwrite  replace the sweep recorded in DIR
+Writes DIR/sweep_plan.json, DIR/point_NNN/ (each a study directory, as growshell run writes
+it, without the figure), and after every point DIR/sweep.json
+({"parameters": [...], "points": [{"params", "status", "reason", "results"}]}, results being
+the point's results.json) and DIR/sweep.csv (a row per point: its parameters, status and the
+scalar results). A point that fails is reported with its reason and the others go on. Every
+point's scene is checked before anything is written.
+Exit status: 0 every point completed, 3 some point ended early or failed, 2 bad input.
+)";
+
+/// The parsed `growshell run` or `growshell sweep` command line.
 struct RunCommand {
   std::string scene_file;
   std::string out;
+  std::vector<std::pair<std::string, std::string>> overrides;  ///< --set KEY=VALUE, in order
+  std::vector<SweepParameter> parameters;                       ///< --param (sweep only)
   ExistingOutput existing = ExistingOutput::Refuse;
   bool help = false;
 };
 
-RunCommand parse_run_command(int argc, char** argv) {
+RunCommand parse_run_command(int argc, char** argv, bool sweep) {
   RunCommand c;
   bool resume = false, overwrite = false;
   for (int i = 2; i < argc; ++i) {
@@ -91,12 +122,23 @@ RunCommand parse_run_command(int argc, char** argv) {
     } else if (arg == "--out") {
       if (i + 1 >= argc) throw std::invalid_argument("option --out needs a directory");
       c.out = argv[++i];
+    } else if (arg == "--set") {
+      if (i + 1 >= argc) throw std::invalid_argument("option --set needs KEY=VALUE");
+      const std::string kv = argv[++i];
+      const std::size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw std::invalid_argument("option --set takes KEY=VALUE (got '" + kv + "')");
+      c.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (sweep && arg == "--param") {
+      if (i + 1 >= argc) throw std::invalid_argument("option --param needs KEY=V1,V2,...");
+      c.parameters.push_back(parse_sweep_parameter(argv[++i]));
     } else if (arg == "--resume") {
       resume = true;
     } else if (arg == "--overwrite") {
       overwrite = true;
     } else if (arg.rfind("-", 0) == 0) {
-      throw std::invalid_argument("unknown option " + arg + " (growshell run --help lists them)");
+      throw std::invalid_argument("unknown option " + arg + " (growshell " +
+                                  (sweep ? "sweep" : "run") + " --help lists them)");
     } else if (c.scene_file.empty()) {
       c.scene_file = arg;
     } else {
@@ -106,8 +148,14 @@ RunCommand parse_run_command(int argc, char** argv) {
   if (resume && overwrite) throw std::invalid_argument("give --resume or --overwrite, not both");
   if (resume) c.existing = ExistingOutput::Resume;
   if (overwrite) c.existing = ExistingOutput::Overwrite;
+  const std::string name = sweep ? "sweep" : "run";
   if (!c.help && c.scene_file.empty())
-    throw std::invalid_argument("growshell run needs a scene file (growshell run --help)");
+    throw std::invalid_argument("growshell " + name + " needs a scene file (growshell " + name +
+                                " --help)");
+  if (sweep && !c.help && c.out.empty())
+    throw std::invalid_argument("growshell sweep needs --out DIR");
+  if (sweep && !c.help && c.parameters.empty())
+    throw std::invalid_argument("growshell sweep needs at least one --param KEY=V1,V2,...");
   return c;
 }
 
@@ -176,28 +224,47 @@ void draw_figure(const std::string& dir) {
     say("# wrote " + dir + "/eb_hat.png");
 }
 
-int run_study(const RunCommand& c) {
+/// The scene file with the --set overrides applied.
+Scene command_scene(const RunCommand& c) {
   Scene scene = read_scene(c.scene_file);
+  for (const auto& [key, value] : c.overrides) apply_override(scene, key, value);
+  return scene;
+}
+
+int run_study(const RunCommand& c) {
+  Scene scene = command_scene(c);
   if (!c.out.empty()) apply_override(scene, "output.directory", c.out);
   validate_scene(scene);
   const std::string dir = scene.output.directory;
   check_study_directory(dir, c.existing);
-  switch (scene.study.kind) {
-    case StudyKind::ConeBranch: {
-      ConeBranchStudyOptions options = cone_branch_study_options(scene);
-      if (c.existing == ExistingOutput::Resume) options.start = ConeBranchStart::LastState;
-      say("# growshell run: study " + study_kind_name(scene.study.kind) + ", scene " +
-          c.scene_file + ", output " + dir);
-      const ConeBranchStudy study = run_cone_branch_study(scene, options, dir, say);
-      draw_figure(dir);
-      if (!study.results.completed) {
-        std::fprintf(stderr, "growshell: the study ended early: %s\n", study.results.end.c_str());
-        return 3;
-      }
-      return 0;
-    }
+  say("# growshell run: study " + study_kind_name(scene.study.kind) + ", scene " + c.scene_file +
+      ", output " + dir);
+  const SceneStudyOutcome outcome = run_scene_study(scene, c.existing, say);
+  draw_figure(dir);
+  if (!outcome.completed) {
+    std::fprintf(stderr, "growshell: the study ended early: %s\n", outcome.end.c_str());
+    return 3;
   }
-  throw std::logic_error("a study kind without a runner");
+  return 0;
+}
+
+int run_sweep(const RunCommand& c) {
+  const Scene base = command_scene(c);
+  say("# growshell sweep: study " + study_kind_name(base.study.kind) + ", scene " +
+      c.scene_file + ", " + std::to_string(sweep_points(c.parameters).size()) + " points, output " +
+      c.out);
+  const ParameterSweep sweep = run_parameter_sweep(base, c.parameters, c.out, c.existing, say);
+  int completed = 0;
+  for (const SweepPointResult& r : sweep.results)
+    completed += r.status == SweepPointResult::Status::Completed;
+  say("# wrote " + c.out + "/sweep.json and sweep.csv: " + std::to_string(completed) + " of " +
+      std::to_string(sweep.points.size()) + " points completed");
+  if (!sweep.all_completed()) {
+    std::fprintf(stderr, "growshell: %zu of %zu sweep points did not complete (sweep.json says why)\n",
+                 sweep.points.size() - static_cast<std::size_t>(completed), sweep.points.size());
+    return 3;
+  }
+  return 0;
 }
 
 int dispatch(int argc, char** argv) {
@@ -207,18 +274,19 @@ int dispatch(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  if (command != "run") {
+  if (command != "run" && command != "sweep") {
     std::fputs(kUsage, stderr);
     if (!command.empty())
       std::fprintf(stderr, "growshell: error: unknown command '%s'\n", command.c_str());
     return 2;
   }
-  const RunCommand c = parse_run_command(argc, argv);
+  const bool sweep = command == "sweep";
+  const RunCommand c = parse_run_command(argc, argv, sweep);
   if (c.help) {
-    std::fputs(kRunUsage, stdout);
+    std::fputs(sweep ? kSweepUsage : kRunUsage, stdout);
     return 0;
   }
-  return run_study(c);
+  return sweep ? run_sweep(c) : run_study(c);
 }
 
 }  // namespace

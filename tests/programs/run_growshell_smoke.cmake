@@ -98,6 +98,21 @@ foreach(bad IN ITEMS "bad.json;study.tolerance = -1" "unknown.json;study.kind")
   endif()
 endforeach()
 
+# --set with an unknown key, or without '=', is refused by name and changes nothing.
+foreach(bad IN ITEMS "mesh.ringz=3;unknown key 'mesh.ringz'" "thickness;takes KEY=VALUE"
+                     "study.tolerance=-1;study.tolerance = -1")
+  list(GET bad 0 setting)
+  list(GET bad 1 message)
+  execute_process(COMMAND "${PROGRAM}" run "${OUT}/small.json" --out "${run}" --overwrite
+                          --set "${setting}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+  directory_state("${run}" after)
+  if(rc EQUAL 0 OR NOT err MATCHES "${message}" OR NOT before STREQUAL after)
+    message(FATAL_ERROR "--set ${setting} was not refused naming '${message}', or changed "
+                        "${run} (${rc}):\n${err}")
+  endif()
+endforeach()
+
 # --resume with a scene that would change the states already traced is refused by key.
 file(WRITE "${OUT}/thinner.json"
      "{\"thickness\": 0.03, \"mesh\": {\"size_slope\": 0.25}, \"continuation\": {\"phi_max\": 0.4}}\n")
@@ -114,9 +129,9 @@ file(STRINGS "${run}/branch.csv" rows_before)
 list(LENGTH rows_before n_before)
 file(APPEND "${run}/branch.csv" "9,9,9,9,9,9,9,9,9,9,9,9,9,9\n")
 file(WRITE "${run}/states/.point_00099.txt.tmp" "partial")
-file(WRITE "${OUT}/longer.json"
-     "{\"thickness\": 0.04, \"mesh\": {\"size_slope\": 0.25}, \"continuation\": {\"phi_max\": 0.4}}\n")
-execute_process(COMMAND "${PROGRAM}" run "${OUT}/longer.json" --out "${run}" --resume
+# The longer trace is the first scene with --set continuation.phi_max=0.4.
+execute_process(COMMAND "${PROGRAM}" run "${OUT}/small.json" --out "${run}" --resume
+                        --set continuation.phi_max=0.4
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT log MATCHES "resuming from")
   message(FATAL_ERROR "--resume failed (${rc}):\n${log}\n${err}")
@@ -161,6 +176,12 @@ endif()
 file(READ "${run}/results.json" results)
 string(JSON phi_last GET "${results}" phi_last)
 string(JSON phi_branch_after GET "${results}" phi_branch)
+file(READ "${run}/scene.json" scene_as_run)
+string(JSON phi_max_as_run GET "${scene_as_run}" continuation phi_max)
+if(NOT phi_max_as_run EQUAL 0.4)
+  message(FATAL_ERROR "scene.json after --resume --set continuation.phi_max=0.4 says phi_max "
+                      "${phi_max_as_run}")
+endif()
 if(phi_last LESS 0.4 OR NOT phi_branch_after EQUAL phi_branch)
   message(FATAL_ERROR "results.json after --resume: phi_last ${phi_last}, phi_branch "
                       "${phi_branch_after} (was ${phi_branch})")

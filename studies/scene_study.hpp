@@ -1,0 +1,31 @@
+#pragma once
+/// \file
+/// The study a scene names (study.kind), run into a directory: the one entry point that the
+/// driver's `run` and `sweep` share, so that a study runs the same way alone or as a point of
+/// a sweep.
+
+#include <string>
+
+#include "libshell/io/scene.hpp"
+#include "studies/study_directory.hpp"
+#include "studies/study_progress.hpp"
+
+namespace growshell {
+
+/// What a study run returns.
+struct SceneStudyOutcome {
+  /// The study's trace reached its end (results.json "completed").
+  bool completed = false;
+  /// Why it ended (results.json "end").
+  std::string end;
+};
+
+/// Validates `scene`, checks scene.output.directory under `existing` (check_study_directory),
+/// and runs the study scene.study.kind names there: from the start, or (Resume) on from the
+/// last state the recorded study committed. Writes what the study writes (for cone_branch,
+/// run_cone_branch_study), never the figure. Throws, before writing anything, as
+/// validate_scene and check_study_directory for bad input, and as the study's runner.
+SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,
+                                  const StudyProgress& progress = {});
+
+}  // namespace growshell
