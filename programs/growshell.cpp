@@ -59,7 +59,7 @@ Runs the study that SCENE.json names (study.kind) and writes into DIR.
                the key has it. DIR/scene.json records the scene as run.
   --resume     continue the study recorded in DIR from its last complete saved state (the
                record goes on without repeating a row; the scene may differ from the recorded
-               one only in continuation.phi_min, continuation.phi_max, output.*,
+               one only in continuation.phi_start, phi_min, phi_max, output.*,
                study.through_contact and study.eigenmodes)
   --overwrite  replace the study recorded in DIR
 A DIR that exists and is not empty is refused unless --resume or --overwrite is given. Bad

@@ -16,10 +16,12 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Keys a resumed study may change: where the trace ends and what it writes, not the states
-/// already on its branch.
-constexpr std::array<std::string_view, 7> kResumableKeys = {
-    "continuation.phi_min", "continuation.phi_max",  "output.directory", "output.snapshot_every",
-    "output.write_vtk",     "study.through_contact", "study.eigenmodes"};
+/// already on its branch (phi_start is where a trace from flat begins, which a resumed study
+/// never does; it may need to move into a new [phi_min, phi_max]).
+constexpr std::array<std::string_view, 8> kResumableKeys = {
+    "continuation.phi_start", "continuation.phi_min",  "continuation.phi_max",
+    "output.directory",       "output.snapshot_every", "output.write_vtk",
+    "study.through_contact",  "study.eigenmodes"};
 
 /// The value of a dotted key in a scene_to_json document.
 const nlohmann::json& at_key(const nlohmann::json& document, const std::string& key) {
@@ -59,9 +61,9 @@ void check_resumable_scene(const std::string& directory, const Scene& scene) {
     if (a != b)
       throw std::invalid_argument("cannot resume the study in '" + directory + "': its scene has " +
                                   key + " = " + a.dump() + ", this scene " + b.dump() +
-                                  " (a resumed study may change only continuation.phi_min, "
-                                  "continuation.phi_max, output.*, study.through_contact and "
-                                  "study.eigenmodes)");
+                                  " (a resumed study may change only continuation.phi_start, "
+                                  "continuation.phi_min, continuation.phi_max, output.*, "
+                                  "study.through_contact and study.eigenmodes)");
   }
 }
 

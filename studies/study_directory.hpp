@@ -24,7 +24,7 @@ void check_study_directory(const std::string& directory, ExistingOutput existing
 
 /// Throws std::invalid_argument, naming the first key that differs, unless `scene` may
 /// continue the study whose scene `directory`/scene.json holds: every key must be equal except
-/// those that do not change the states already traced (continuation.phi_min,
+/// those that do not change the states already traced (continuation.phi_start, continuation.phi_min,
 /// continuation.phi_max, output.*, study.through_contact, study.eigenmodes). Throws as
 /// read_scene if scene.json is missing or invalid.
 void check_resumable_scene(const std::string& directory, const Scene& scene);
