@@ -20,13 +20,6 @@ namespace fs = std::filesystem;
 using test_support::error_of;
 using ParameterSweepFiles = testing::ScratchDirectoryTest;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(ParameterSweep, ParsesKeyAndValuesKeepingCommasInsideBrackets) {
   const SweepParameter p = parse_sweep_parameter("thickness=0.04,0.02,0.01");
   EXPECT_EQ(p.key, "thickness");
