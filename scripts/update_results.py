@@ -93,9 +93,9 @@ def power_law(root, directory, x_key, y_key, limit):
     p = sum((a - mx) * (b - my) for a, b in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs)
     log_a = my - p * mx
     misfit = max(abs(math.exp(log_a + p * a) / math.exp(b) - 1) for a, b in zip(xs, ys))
-    return ("%s − %g = A %s^p with A = %.4g, p = %.3f (least squares over %d points; largest "
-            "relative misfit of %s − %g: %.1f %%)\n" % (y_key, limit, x_key, math.exp(log_a), p, n,
-                                                       y_key, limit, 100 * misfit))
+    y = y_key if limit == 0 else "%s − %g" % (y_key, limit)
+    return ("%s = A %s^p with A = %.4g, p = %.3f (least squares over %d points; largest "
+            "relative misfit of %s: %.1f %%)\n" % (y, x_key, math.exp(log_a), p, n, y, 100 * misfit))
 
 
 def table(root, directory, keys, compare=True):
