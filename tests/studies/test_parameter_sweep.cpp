@@ -60,6 +60,10 @@ TEST(ParameterSweep, APointSceneHasItsSettingsAndDirectoryAndNamesItsBadValue) {
   EXPECT_EQ(scene.output.directory, "/tmp/sweep/point_000");
   EXPECT_EQ(error_of([&] { sweep_point_scene(default_scene(), points[1], "/tmp/sweep"); }),
             "sweep point point_001 (thickness=-1): thickness = -1 must be finite and > 0");
+  const std::vector<SweepPoint> unknown = sweep_points({parse_sweep_parameter("mesh.ringz=3")});
+  EXPECT_NE(error_of([&] { sweep_point_scene(default_scene(), unknown[0], "/tmp/sweep"); })
+                .find("sweep point point_000 (mesh.ringz=3): unknown key 'mesh.ringz'"),
+            std::string::npos);
 }
 
 TEST_F(ParameterSweepFiles, OpeningRefusesBadValuesUsedDirectoriesAndOtherPlans) {
