@@ -164,6 +164,11 @@ ConeBranchRun::ConeBranchRun(const Scene& scene, const ConeBranchStudyOptions& o
   } else if (options_.start == ConeBranchStart::SavedState) {
     start_state_path_ = options_.resume_file;
   }
+  if (options_.start == ConeBranchStart::Flat &&
+      scene_.continuation.direction == ContinuationDirection::Backward)
+    throw std::invalid_argument(
+        "continuation.direction = backward needs a start from a saved state (trace_disc "
+        "--resume FILE): a study from the flat sheet grows forward");
   if (options_.start != ConeBranchStart::Flat)
     start_state_ = load_branch_state(start_state_path_, model_->dimension());
 }

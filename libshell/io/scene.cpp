@@ -32,6 +32,9 @@ using Json = nlohmann::ordered_json;
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument(message); }
 
+/// The thickest a sheet may be, as a fraction of its width (R, or R - R_i for a ring).
+constexpr double kMaxThicknessFraction = 0.25;
+
 /// Shortest text that reads back as the same double, so that error messages never show a
 /// rejected value rounded onto its bound (0.50000001 printed as "0.5").
 std::string format(double value) {
@@ -395,6 +398,18 @@ void validate_scene(const Scene& scene) {
          format(g.radius) + ")");
 
   validate_thickness(scene.thickness);
+  // A thin sheet: the Kirchhoff-Love energy holds for h << the sheet's width (R, or R - R_i
+  // for a ring); a quarter of it is the stated limit.
+  {
+    const double width = g.shape == SceneShape::Ring ? g.radius - g.inner_radius : g.radius;
+    const double thickest = std::max(thickness_at_radius(scene.thickness, 0.0, g.radius),
+                                     thickness_at_radius(scene.thickness, g.radius, g.radius));
+    if (!(thickest <= kMaxThicknessFraction * width))
+      fail("thickness " + format(thickest) + " must be at most " + format(kMaxThicknessFraction) +
+           " times the sheet's width " + format(width) + " (R" +
+           (g.shape == SceneShape::Ring ? " - R_i" : "") +
+           "): the shell energy is that of a thin sheet");
+  }
 
   require_positive(scene.material.youngs_modulus, "material.youngs_modulus");
   const double nu = scene.material.poisson_ratio;

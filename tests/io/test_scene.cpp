@@ -361,6 +361,29 @@ TEST(SceneValidation, ThicknessMustBePositive) {
   EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness.center = -1 must be"), std::string::npos);
 }
 
+// A thin sheet: at most a quarter of its width thick (R for a disc, R - R_i for a ring),
+// wherever the profile is thickest.
+TEST(SceneValidation, ThicknessIsAtMostAQuarterOfTheWidth) {
+  Scene s = default_scene();
+  s.thickness = ConstantThickness{0.25};
+  EXPECT_NO_THROW(validate_scene(s));
+  s.thickness = ConstantThickness{2.0};
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "thickness 2 must be at most 0.25 times the sheet's width 1 (R): the shell energy is "
+            "that of a thin sheet");
+  s.thickness = LinearThickness{0.02, 0.3};  // thickest at the rim
+  EXPECT_NE(error_of([&] { validate_scene(s); }).find("thickness 0.3 must be at most"),
+            std::string::npos);
+  s.thickness = ConstantThickness{0.2};
+  s.geometry.shape = SceneShape::Ring;
+  s.geometry.inner_radius = 0.5;
+  EXPECT_EQ(error_of([&] { validate_scene(s); }),
+            "thickness 0.2 must be at most 0.25 times the sheet's width 0.5 (R - R_i): the shell "
+            "energy is that of a thin sheet");
+  s.thickness = ConstantThickness{0.1};
+  EXPECT_NO_THROW(validate_scene(s));
+}
+
 TEST(SceneValidation, InnerRadiusOfARing) {
   Scene s = default_scene();
   s.geometry.shape = SceneShape::Ring;

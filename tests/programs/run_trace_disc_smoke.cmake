@@ -105,4 +105,19 @@ execute_process(COMMAND "${PROGRAM}" --h -1 --out "${OUT}/bad" RESULT_VARIABLE r
 if(rc EQUAL 0 OR NOT err MATCHES "thickness")
   message(FATAL_ERROR "--h -1 was not rejected by name (${rc}): ${err}")
 endif()
+# --backward without a saved state to start from, and a sheet thicker than a quarter of its
+# radius, are refused by name before anything is written.
+foreach(bad IN ITEMS "--backward;1;continuation.direction = backward needs a start"
+                     "--h;0.5;thickness 0.5 must be at most 0.25 times")
+  list(GET bad 0 option)
+  list(GET bad 1 value)
+  list(GET bad 2 message)
+  file(REMOVE_RECURSE "${OUT}/refused")
+  execute_process(COMMAND "${PROGRAM}" ${option} ${value} --out "${OUT}/refused" RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE log ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "${message}" OR EXISTS "${OUT}/refused")
+    message(FATAL_ERROR "${option} ${value} was not refused naming '${message}', or wrote "
+                        "${OUT}/refused (${rc}): ${err}")
+  endif()
+endforeach()
 message(STATUS "trace_disc smoke test: ${n} rows, then ${m} after resuming")
