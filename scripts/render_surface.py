@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Render a growshell .vtu surface (ASCII, triangles) to a PNG with matplotlib.
+"""Render a growshell .vtu surface (triangles; appended raw binary or ASCII) to a PNG with matplotlib.
 
 usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 25 --azim -60]
                          [--views "ELEV,AZIM;ELEV,AZIM;..."] [--contact CONTACT.vtu] [--log]
@@ -23,15 +23,30 @@ import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 
-def read_array(text, name=None, components=None):
+TYPES = {"Float64": "<f8", "Int64": "<i8", "UInt8": "u1"}
+
+
+def read_array(data, name=None, components=None):
+    """One DataArray of a .vtu file's bytes: inline ASCII, or appended raw (VTK XML 1.0 with
+    UInt64 headers, as growshell writes it)."""
     if name:
-        pattern = r'<DataArray[^>]*Name="%s"[^>]*>(.*?)</DataArray>' % re.escape(name)
+        key = rb'Name="%s"' % re.escape(name).encode()
     else:
-        pattern = r'<DataArray[^>]*NumberOfComponents="%d"[^>]*>(.*?)</DataArray>' % components
-    match = re.search(pattern, text, re.S)
-    if not match:
+        key = rb'NumberOfComponents="%d"' % components
+    tag = re.search(rb'<DataArray([^>]*' + key + rb'[^>]*)(/?)>', data)
+    if not tag:
         raise SystemExit("no array %s in file" % (name or "points"))
-    return np.array(match.group(1).split(), dtype=float)
+    attributes = tag.group(1)
+    offset = re.search(rb'offset="([0-9]+)"', attributes)
+    if offset is None:  # ASCII: the numbers up to </DataArray>
+        end = data.index(b"</DataArray>", tag.end())
+        return np.array(data[tag.end():end].split(), dtype=float)
+    kind = re.search(rb'type="([A-Za-z0-9]+)"', attributes).group(1).decode()
+    start = data.index(b"_", data.index(b'<AppendedData encoding="raw">')) + 1
+    at = start + int(offset.group(1))
+    size = int(np.frombuffer(data, dtype="<u8", count=1, offset=at)[0])
+    dtype = np.dtype(TYPES[kind])
+    return np.frombuffer(data, dtype=dtype, count=size // dtype.itemsize, offset=at + 8).astype(float)
 
 
 def main():
@@ -46,7 +61,7 @@ def main():
     parser.add_argument("--views")
     parser.add_argument("--alpha", type=float, default=0.85)
     args = parser.parse_args()
-    text = open(args.input).read()
+    text = open(args.input, "rb").read()
     points = read_array(text, components=3).reshape(-1, 3)
     cells = read_array(text, name="connectivity").astype(int).reshape(-1, 3)
     values = read_array(text, name=args.field)
@@ -59,7 +74,7 @@ def main():
     colors = plt.cm.viridis((values - values.min()) / max(np.ptp(values), 1e-300))
     touching = None
     if args.contact:
-        ctext = open(args.contact).read()
+        ctext = open(args.contact, "rb").read()
         cpoints = read_array(ctext, components=3).reshape(-1, 3)
         force = read_array(ctext, name="contact_force")
         touching = force > 0

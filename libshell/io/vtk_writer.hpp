@@ -17,10 +17,22 @@ struct SurfaceSnapshot {
   std::vector<std::pair<std::string, Eigen::VectorXd>> point_data;  ///< one value per point
 };
 
-/// Writes `snapshot` as a VTK XML unstructured grid (.vtu, ASCII, full double precision).
-/// Throws std::invalid_argument for a field of the wrong length and std::runtime_error if the
-/// file cannot be written (naming the path).
-void write_vtu(const std::string& path, const SurfaceSnapshot& snapshot);
+/// How write_vtu stores the arrays.
+enum class VtuEncoding {
+  /// Raw little-endian bytes in one <AppendedData encoding="raw"> block after the XML (VTK
+  /// XML format 1.0, UInt64 size headers): exact doubles at 8 bytes each, about a third of
+  /// the ASCII size; read by ParaView, VTK and meshio, and by scripts/render_surface.py.
+  AppendedRaw,
+  /// Inline ASCII with full double precision (17 significant digits): readable as text.
+  Ascii,
+};
+
+/// Writes `snapshot` as a VTK XML unstructured grid (.vtu): points (Float64 x 3), triangles
+/// (Int64 connectivity and offsets, UInt8 types), and the named Float64 point and cell fields,
+/// every value exact. Throws std::invalid_argument for a field of the wrong length and
+/// std::runtime_error if the file cannot be written (naming the path).
+void write_vtu(const std::string& path, const SurfaceSnapshot& snapshot,
+               VtuEncoding encoding = VtuEncoding::AppendedRaw);
 
 /// One entry of a ParaView collection: a time value and a file name relative to the .pvd.
 struct CollectionEntry {

@@ -1,8 +1,8 @@
 # Runs `growshell run` on a small scene (h = 0.04, rings mesh with size_slope 0.25, up to
-# phi_e = 0.3) and checks its results.json and figure; that a second run into the same
+# phi_e = 0.3) and checks its results.json, figure and binary VTU (drawn by render_surface.py); that a second run into the same
 # directory is refused and changes nothing; that bad input is refused by name and writes
 # nothing; and that --resume continues the record from its last commit without repeating a
-# row, dropping what a killed run left uncommitted. Variables: PROGRAM, OUT.
+# row, dropping what a killed run left uncommitted. Variables: PROGRAM, SOURCE_DIR, OUT.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 set(run "${OUT}/run")
@@ -46,6 +46,19 @@ if(no_matplotlib EQUAL 0)
   endif()
 elseif(NOT log MATCHES "figure skipped: [^\n]*matplotlib")
   message(FATAL_ERROR "no matplotlib, and growshell run did not say the figure was skipped:\n${log}")
+endif()
+# The VTU snapshots are binary (appended raw); scripts/render_surface.py reads them.
+file(READ "${run}/last.vtu" vtu LIMIT 400)
+if(NOT vtu MATCHES "format=\"appended\" offset=\"0\"")
+  message(FATAL_ERROR "last.vtu is not appended raw:\n${vtu}")
+endif()
+if(no_matplotlib EQUAL 0)
+  execute_process(COMMAND /usr/bin/python3 "${SOURCE_DIR}/scripts/render_surface.py"
+                          "${run}/last.vtu" "${OUT}/last.png"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE rlog ERROR_VARIABLE rerr)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${OUT}/last.png")
+    message(FATAL_ERROR "render_surface.py could not draw last.vtu (${rc}):\n${rlog}\n${rerr}")
+  endif()
 endif()
 
 # Every file of a directory with its hash, to see that a refused run changes nothing.
