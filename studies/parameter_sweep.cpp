@@ -40,6 +40,13 @@ Json value_json(const std::string& value) {
   return parsed.is_discarded() ? Json(value) : parsed;
 }
 
+/// The parameters as sweep_plan.json and sweep.json record them: [{"key", "values"}].
+Json parameters_json(const std::vector<SweepParameter>& parameters) {
+  Json out = Json::array();
+  for (const SweepParameter& p : parameters) out.push_back({{"key", p.key}, {"values", p.values}});
+  return out;
+}
+
 /// The plan a resumed sweep must match: the base scene (output directory = the sweep's) and
 /// the parameters.
 Json sweep_plan(const std::string& dir, const Scene& base,
@@ -48,9 +55,7 @@ Json sweep_plan(const std::string& dir, const Scene& base,
   scene.output.directory = dir;
   Json plan;
   plan["base_scene"] = Json::parse(scene_to_json(scene));
-  plan["parameters"] = Json::array();
-  for (const SweepParameter& p : parameters)
-    plan["parameters"].push_back({{"key", p.key}, {"values", p.values}});
+  plan["parameters"] = parameters_json(parameters);
   return plan;
 }
 
@@ -64,8 +69,7 @@ void flatten(const Json& object, const std::string& prefix, std::vector<std::str
       continue;
     }
     if (it->is_array()) continue;
-    if (!values.count(key) && std::find(keys.begin(), keys.end(), key) == keys.end())
-      keys.push_back(key);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
     if (it->is_null()) values[key] = "";
     else if (it->is_string()) values[key] = it->get<std::string>();
     else values[key] = it->dump();
@@ -234,9 +238,7 @@ void write_sweep_summary(const std::string& dir, const std::vector<SweepParamete
                          const std::vector<SweepPoint>& points,
                          const std::vector<std::optional<SweepPointResult>>& results) {
   Json summary;
-  summary["parameters"] = Json::array();
-  for (const SweepParameter& p : parameters)
-    summary["parameters"].push_back({{"key", p.key}, {"values", p.values}});
+  summary["parameters"] = parameters_json(parameters);
   summary["points"] = Json::array();
   std::vector<std::string> result_keys;
   std::vector<std::map<std::string, std::string>> flat(points.size());
