@@ -11,21 +11,31 @@ namespace growshell {
 /// which equals inserting a wedge of angle phi_e (the excess angle, radians) into the sheet.
 /// Thickness does not grow. For a curved reference the radial direction is the projection of
 /// X - center onto the tangent plane.
+///
+/// With smoothing_radius epsilon > 0 the excess angle rises from 0 at the centre to phi_e
+/// over a disc of radius about epsilon: lambda(r) = 1 + w(r) phi_e / (2 pi) with
+/// w(r) = r^2 / (r^2 + epsilon^2). The grown metric then has no point singularity: its
+/// Gaussian curvature -phi_e is spread over r ~ epsilon instead of sitting at the centre.
 struct CircumferentialGrowth {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double smoothing_radius = 0.0;  ///< epsilon (m), >= 0; 0 = growth singular at the centre
 };
 
 /// Circumferential stretch lambda = 1 + phi_e / (2 pi) (dimensionless).
 double circumferential_stretch(double excess_angle);
 
+/// Weight w(r) = r^2 / (r^2 + epsilon^2) of the excess angle at distance r (m) from the
+/// centre; 1 for epsilon = 0.
+double excess_angle_weight(const CircumferentialGrowth& growth, double r);
+
 /// Target (grown) metric abar_ab = (G A_a) . (G A_b) at reference point X with reference
 /// tangents A = [A_1 A_2] (covariant basis of the parameter coordinates, metres):
-///   abar = A^T A + (lambda^2 - 1) t t^T,  t_a = e_phi . A_a.
+///   abar = A^T A + (lambda^2 - 1) t t^T,  t_a = e_phi . A_a,  lambda = lambda(r).
 /// At X on the axis (no circumferential direction) the growth is undefined; abar = A^T A there.
 Eigen::Matrix2d target_metric(const CircumferentialGrowth& growth, const Eigen::Vector3d& X,
                               const Eigen::Matrix<double, 3, 2>& A, double excess_angle);
 
-/// d abar / d phi_e = (lambda / pi) t t^T, same conventions as target_metric.
+/// d abar / d phi_e = (lambda w / pi) t t^T, same conventions as target_metric.
 Eigen::Matrix2d target_metric_excess_angle_derivative(const CircumferentialGrowth& growth,
                                                       const Eigen::Vector3d& X,
                                                       const Eigen::Matrix<double, 3, 2>& A,

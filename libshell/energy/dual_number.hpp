@@ -31,6 +31,8 @@ inline Dual sqrt(Dual a) {
   return {s, a.derivative / (2.0 * s)};
 }
 
+inline Dual log(Dual a) { return {std::log(a.value), a.derivative / a.value}; }
+
 /// Value part of a double or a Dual.
 inline double value_of(double x) { return x; }
 inline double value_of(Dual x) { return x.value; }

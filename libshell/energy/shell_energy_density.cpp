@@ -62,12 +62,14 @@ ConstitutiveMatrix<T> constitutive_matrix(T p, T q, T r, double nu) {
   return D;
 }
 
-/// Stress-like derivatives dW/dE (sigma) and dW/db (mu) and the two energies, templated so
-/// that a Dual target metric yields their derivative with respect to a growth parameter.
+/// Stress-like derivatives dW/de (sigma) and dW/db (mu), the stretching tangent d2W/de2 and
+/// the two energies, templated so that a Dual target metric yields their derivative with
+/// respect to a growth parameter. e = (a - abar)/2 is the covariant Green strain.
 template <class T>
 struct MaterialResponse {
   T sigma[3];
   T mu[3];
+  T stretch_tangent[3][3];  // d2 W_s / de2
   T stretching;
   T bending;
   T bending_density;  // U_b * weight * sqrt(det abar)
@@ -75,32 +77,87 @@ struct MaterialResponse {
   T measure;  // weight * sqrt(det abar)
 };
 
+/// W_s = cs * measure * U_s for the Saint Venant-Kirchhoff law: U_s = e^T D e.
+template <class T>
+void saint_venant_kirchhoff(const JetGeometry& g, const T abar[3], T cs, MaterialResponse<T>& out) {
+  T e[3], De[3];
+  for (int i = 0; i < 3; ++i) e[i] = 0.5 * (g.metric[i] - abar[i]);
+  T Us = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    De[i] = out.D.d[i][0] * e[0] + out.D.d[i][1] * e[1] + out.D.d[i][2] * e[2];
+    Us = Us + e[i] * De[i];
+  }
+  const T scale = cs * out.measure;
+  out.stretching = scale * Us;
+  for (int i = 0; i < 3; ++i) {
+    out.sigma[i] = 2.0 * scale * De[i];
+    for (int j = 0; j < 3; ++j) out.stretch_tangent[i][j] = 2.0 * scale * out.D.d[i][j];
+  }
+}
+
+/// W_s = cs * measure * U_s for the neo-Hookean law with M = abar^-1 a and L = ln det M:
+/// U_s = (1 - nu)/2 (tr M - 2 - L) + nu/4 L^2. Derivatives are taken in the current metric
+/// a = abar + 2 e, then d/de = 2 d/da.
+template <class T>
+void neo_hookean(const JetGeometry& g, const T abar[3], const T contravariant[3], T cs, double nu,
+                 MaterialResponse<T>& out) {
+  using std::log;  // log(Dual) is found by argument-dependent lookup
+  const double a11 = g.metric[0], a22 = g.metric[1], a12 = g.metric[2];
+  const double det_a = a11 * a22 - a12 * a12;
+  const T det_abar = abar[0] * abar[1] - abar[2] * abar[2];
+  const T L = log(det_a / det_abar);
+  // d tr M / da and d L / da, in the (11, 22, 12) order with a_12 counted once.
+  const T trace_gradient[3] = {contravariant[0], contravariant[2], 2.0 * contravariant[1]};
+  const double log_gradient[3] = {a22 / det_a, a11 / det_a, -2.0 * a12 / det_a};
+  const double det_hessian[3][3] = {{0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 0.0, -2.0}};
+  const T trace_M = trace_gradient[0] * a11 + trace_gradient[1] * a22 + trace_gradient[2] * a12;
+  const T scale = cs * out.measure;
+  out.stretching = scale * (0.5 * (1.0 - nu) * (trace_M - 2.0 - L) + 0.25 * nu * L * L);
+  const T curvature_of_log = 0.5 * nu * L - 0.5 * (1.0 - nu);
+  for (int i = 0; i < 3; ++i) {
+    out.sigma[i] = 2.0 * scale *
+                   (0.5 * (1.0 - nu) * (trace_gradient[i] - log_gradient[i]) +
+                    0.5 * nu * L * log_gradient[i]);
+    for (int j = 0; j < 3; ++j) {
+      const double log_hessian =
+          det_hessian[i][j] / det_a - log_gradient[i] * log_gradient[j];
+      out.stretch_tangent[i][j] =
+          4.0 * scale * (curvature_of_log * log_hessian +
+                         0.5 * nu * log_gradient[i] * log_gradient[j]);
+    }
+  }
+}
+
 template <class T>
 MaterialResponse<T> material_response(const JetGeometry& g, const T abar[3], double weight,
-                                      double cs, double cb, double nu) {
+                                      double cs, double cb, const Material& material) {
   using std::sqrt;  // sqrt(Dual) is found by argument-dependent lookup
+  const double nu = material.poisson_ratio;
   MaterialResponse<T> out;
   const T det = abar[0] * abar[1] - abar[2] * abar[2];
   const T p = abar[1] / det, r = abar[0] / det, q = -abar[2] / det;
   out.D = constitutive_matrix(p, q, r, nu);
   out.measure = weight * sqrt(det);
-  T e[3], De[3], Dk[3];
-  for (int i = 0; i < 3; ++i) e[i] = 0.5 * (g.metric[i] - abar[i]);
-  T Us = 0.0, Ub = 0.0;
+  switch (material.stretching_law) {
+    case StretchingLaw::kSaintVenantKirchhoff:
+      saint_venant_kirchhoff<T>(g, abar, T(cs), out);
+      break;
+    case StretchingLaw::kNeoHookean: {
+      const T contravariant[3] = {p, q, r};
+      neo_hookean<T>(g, abar, contravariant, T(cs), nu, out);
+      break;
+    }
+  }
+  T Dk[3];
+  T Ub = 0.0;
   for (int i = 0; i < 3; ++i) {
-    De[i] = out.D.d[i][0] * e[0] + out.D.d[i][1] * e[1] + out.D.d[i][2] * e[2];
     Dk[i] = out.D.d[i][0] * g.curvature[0] + out.D.d[i][1] * g.curvature[1] +
             out.D.d[i][2] * g.curvature[2];
-    Us = Us + e[i] * De[i];
     Ub = Ub + g.curvature[i] * Dk[i];
   }
-  out.stretching = cs * out.measure * Us;
   out.bending = cb * out.measure * Ub;
   out.bending_density = out.measure * Ub;
-  for (int i = 0; i < 3; ++i) {
-    out.sigma[i] = 2.0 * cs * out.measure * De[i];
-    out.mu[i] = 2.0 * cb * out.measure * Dk[i];
-  }
+  for (int i = 0; i < 3; ++i) out.mu[i] = 2.0 * cb * out.measure * Dk[i];
   return out;
 }
 
@@ -125,8 +182,7 @@ MaterialResponse<double> response_at(const JetGeometry& g, const ShellPointRest&
                           rest.target_metric(0, 1)};
   return material_response<double>(g, abar, rest.weight,
                                    stretching_modulus(material, rest.thickness),
-                                   bending_modulus(material, rest.thickness),
-                                   material.poisson_ratio);
+                                   bending_modulus(material, rest.thickness), material);
 }
 
 }  // namespace
@@ -154,7 +210,6 @@ double shell_point_gradient(const SurfaceJet& jet, const ShellPointRest& rest,
 double shell_point_hessian(const SurfaceJet& jet, const ShellPointRest& rest,
                            const Material& material, JetVector& gradient, JetMatrix& hessian) {
   const JetGeometry g = jet_geometry(jet);
-  const double cs = stretching_modulus(material, rest.thickness);
   const double cb = bending_modulus(material, rest.thickness);
   const auto resp = response_at(g, rest, material);
   gradient = pull_back_stresses(jet, g, resp.sigma, resp.mu);
@@ -178,10 +233,13 @@ double shell_point_hessian(const SurfaceJet& jet, const ShellPointRest& rest,
     Jk.block<1, 3>(i, kJetA1) = (dn_da1.transpose() * *g.second[i]).transpose();
     Jk.block<1, 3>(i, kJetA2) = (dn_da2.transpose() * *g.second[i]).transpose();
   }
-  Eigen::Matrix3d Dm;
+  Eigen::Matrix3d Dm, Ts;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Dm(i, j) = resp.D.d[i][j];
-  hessian.noalias() = Je.transpose() * (2.0 * cs * resp.measure * Dm) * Je;
+    for (int j = 0; j < 3; ++j) {
+      Dm(i, j) = resp.D.d[i][j];
+      Ts(i, j) = resp.stretch_tangent[i][j];
+    }
+  hessian.noalias() = Je.transpose() * Ts * Je;
   hessian.noalias() += Jk.transpose() * (2.0 * cb * resp.measure * Dm) * Jk;
 
   // Second-order terms of the metric: sigma_i d2 e_i.
@@ -224,7 +282,7 @@ JetVector shell_point_gradient_parameter_derivative(const SurfaceJet& jet,
                         Dual(rest.target_metric(0, 1), dabar(0, 1))};
   const auto resp = material_response<Dual>(
       g, abar, rest.weight, stretching_modulus(material, rest.thickness),
-      bending_modulus(material, rest.thickness), material.poisson_ratio);
+      bending_modulus(material, rest.thickness), material);
   double dsigma[3], dmu[3];
   for (int i = 0; i < 3; ++i) {
     dsigma[i] = resp.sigma[i].derivative;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <fstream>
+#include <sstream>
 #include <numbers>
 #include <stdexcept>
 #include <string_view>
@@ -53,6 +54,9 @@ const NameTable<MeshFamily> kMeshFamilyNames = {{MeshFamily::Lattice, "lattice"}
                                                 {MeshFamily::Rings, "rings"},
                                                 {MeshFamily::Gmsh, "gmsh"},
                                                 {MeshFamily::File, "file"}};
+const NameTable<StretchingLaw> kStretchingLawNames = {
+    {StretchingLaw::kNeoHookean, "neo_hookean"},
+    {StretchingLaw::kSaintVenantKirchhoff, "saint_venant_kirchhoff"}};
 const NameTable<GrowthLaw> kLawNames = {{GrowthLaw::Circumferential, "circumferential"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
@@ -200,12 +204,18 @@ const Field kFields[] = {
   {"material.poisson_ratio",
    [](Scene& s, const Json& v, const std::string& k) { s.material.poisson_ratio = read_number(v, k); },
    [](const Scene& s) { return Json(s.material.poisson_ratio); }},
+  {"material.stretching_law",
+   [](Scene& s, const Json& v, const std::string& k) { s.material.stretching_law = read_enum(v, k, kStretchingLawNames); },
+   [](const Scene& s) { return Json(enum_name(kStretchingLawNames, s.material.stretching_law)); }, true},
   {"growth.law",
    [](Scene& s, const Json& v, const std::string& k) { s.growth.law = read_enum(v, k, kLawNames); },
    [](const Scene& s) { return Json(enum_name(kLawNames, s.growth.law)); }, true},
   {"growth.center",
    [](Scene& s, const Json& v, const std::string& k) { s.growth.center = read_point2(v, k); },
    [](const Scene& s) { return Json::array({s.growth.center.x(), s.growth.center.y()}); }},
+  {"growth.smoothing_radius",
+   [](Scene& s, const Json& v, const std::string& k) { s.growth.smoothing_radius = read_number(v, k); },
+   [](const Scene& s) { return Json(s.growth.smoothing_radius); }},
   {"mesh.family",
    [](Scene& s, const Json& v, const std::string& k) { s.mesh.family = read_enum(v, k, kMeshFamilyNames); },
    [](const Scene& s) { return Json(enum_name(kMeshFamilyNames, s.mesh.family)); }, true},
@@ -417,6 +427,7 @@ void validate_scene(const Scene& scene) {
 
   require_finite(scene.growth.center.x(), "growth.center[0]");
   require_finite(scene.growth.center.y(), "growth.center[1]");
+  require_nonnegative(scene.growth.smoothing_radius, "growth.smoothing_radius");
 
   const SceneMesh& m = scene.mesh;
   require_at_least(m.rings, 2, "mesh.rings");
@@ -474,9 +485,16 @@ Scene read_scene(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) fail(where + "is a directory, not a file");
   std::ifstream in(path);
   if (!in) fail(where + "cannot be opened for reading");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), "scene file '" + path + "'");
+}
+
+Scene parse_scene(const std::string& text, const std::string& origin) {
+  const std::string where = origin + ": ";
   Json document;
   try {
-    document = Json::parse(in, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    document = Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
   } catch (const Json::parse_error& e) {
     fail(where + "malformed JSON: " + e.what());
   }
@@ -629,6 +647,7 @@ ShellModelSettings scene_model_settings(const Scene& scene) {
   settings.thickness = scene_thickness_field(scene);
   settings.quadrature_degree = scene.mesh.quadrature_degree;
   settings.growth.center = Eigen::Vector3d(scene.growth.center.x(), scene.growth.center.y(), 0.0);
+  settings.growth.smoothing_radius = scene.growth.smoothing_radius;
   return settings;
 }
 

@@ -67,6 +67,9 @@ struct SceneGrowth {
   GrowthLaw law = GrowthLaw::Circumferential;
   /// Centre (m) of the growth law in the plane z = 0; finite.
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  /// Radius epsilon (m) over which the excess angle rises from 0 at the centre to phi_e
+  /// (CircumferentialGrowth::smoothing_radius); 0 = growth singular at the centre; >= 0.
+  double smoothing_radius = 0.0;
 };
 
 /// Which family of control meshes a scene is discretised with.
@@ -244,6 +247,11 @@ void validate_scene(const Scene& scene);
 /// malformed JSON (with the parser's line and column), an unknown key ("unknown key
 /// 'mesh.ringz'"), a wrong type ("mesh.rings must be an integer") or a range error.
 Scene read_scene(const std::string& path);
+
+/// The scene that the JSON text `text` describes, read as read_scene reads a file: keys it
+/// does not set keep their defaults (so a scene recorded before a key existed reads as that
+/// key's default). Error messages start with `origin` (e.g. "scene file 'a.json'").
+Scene parse_scene(const std::string& text, const std::string& origin);
 
 /// Sets one dotted key (as in the file, e.g. "thickness", "geometry.inner_radius",
 /// "continuation.direction") from its command-line text. Numbers, booleans and arrays are

@@ -97,6 +97,16 @@ INSTANTIATE_TEST_SUITE_P(ThicknessAndQuadrature, ShellModelDerivatives,
                          ::testing::Combine(::testing::Values(1e-3, 0.04),
                                             ::testing::Values(1, 2, 6)));
 
+TEST(ShellModel, SmoothedGrowthAndNeoHookeanDerivativesMatchFiniteDifferences) {
+  // The same checks with the other stretching law and a smoothed centre whose radius spans
+  // several elements of the small disc.
+  ShellModelSettings settings = settings_with(0.04, 2);
+  settings.material.stretching_law = StretchingLaw::kNeoHookean;
+  settings.growth.smoothing_radius = 0.3;
+  ShellModel model(small_disc(), settings);
+  expect_derivatives_match_finite_differences(model, bent_state(model, 0.02, 5), 1.3);
+}
+
 class IrregularMeshDerivatives : public ::testing::TestWithParam<int> {};
 
 TEST_P(IrregularMeshDerivatives, GradientHessianAndExcessAngleDerivativeMatchFiniteDifferences) {

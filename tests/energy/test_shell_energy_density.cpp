@@ -1,10 +1,14 @@
 // Finite-difference checks of the quadrature-point energy: gradient and Hessian with respect
 // to the 15-entry surface jet, and the derivative of the gradient with respect to a growth
-// parameter (through the target metric).
+// parameter (through the target metric), for both stretching laws; closed forms; the
+// small-strain agreement of the laws and their ellipticity under compression.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <random>
+#include <tuple>
 
 #include "libshell/energy/shell_energy_density.hpp"
 
@@ -43,14 +47,19 @@ double energy_of(const JetVector& s, const ShellPointRest& rest, const Material&
 constexpr double kStep = 1e-5;
 constexpr double kTolerance = 1e-6;
 
-class ShellDensityDerivatives : public ::testing::TestWithParam<double> {};
+class ShellDensityDerivatives
+    : public ::testing::TestWithParam<std::tuple<double, StretchingLaw>> {
+ protected:
+  double thickness() const { return std::get<0>(GetParam()); }
+  Material material() const { return {1e4, 0.3, std::get<1>(GetParam())}; }
+};
 
 TEST_P(ShellDensityDerivatives, GradientMatchesFiniteDifferences) {
   std::mt19937 rng(7);
-  Material material{1e4, 0.3};
+  const Material material = this->material();
   for (int trial = 0; trial < 20; ++trial) {
     const JetVector s = random_jet_vector(rng);
-    const ShellPointRest rest = random_rest(rng, GetParam());
+    const ShellPointRest rest = random_rest(rng, thickness());
     JetVector g;
     const double E = shell_point_gradient(to_jet(s), rest, material, g);
     EXPECT_NEAR(E, energy_of(s, rest, material), 1e-12 * std::abs(E));
@@ -67,10 +76,10 @@ TEST_P(ShellDensityDerivatives, GradientMatchesFiniteDifferences) {
 
 TEST_P(ShellDensityDerivatives, HessianMatchesFiniteDifferencesOfGradient) {
   std::mt19937 rng(11);
-  Material material{1e4, 0.3};
+  const Material material = this->material();
   for (int trial = 0; trial < 20; ++trial) {
     const JetVector s = random_jet_vector(rng);
-    const ShellPointRest rest = random_rest(rng, GetParam());
+    const ShellPointRest rest = random_rest(rng, thickness());
     JetVector g, g_from_hessian;
     JetMatrix H;
     const double E = shell_point_hessian(to_jet(s), rest, material, g_from_hessian, H);
@@ -93,10 +102,10 @@ TEST_P(ShellDensityDerivatives, HessianMatchesFiniteDifferencesOfGradient) {
 
 TEST_P(ShellDensityDerivatives, ParameterDerivativeOfGradientMatchesFiniteDifferences) {
   std::mt19937 rng(13);
-  Material material{1e4, 0.3};
+  const Material material = this->material();
   for (int trial = 0; trial < 20; ++trial) {
     const JetVector s = random_jet_vector(rng);
-    ShellPointRest rest = random_rest(rng, GetParam());
+    ShellPointRest rest = random_rest(rng, thickness());
     Eigen::Matrix2d dabar;
     dabar << 0.4, -0.1, -0.1, 0.7;
     const JetVector exact =
@@ -114,8 +123,11 @@ TEST_P(ShellDensityDerivatives, ParameterDerivativeOfGradientMatchesFiniteDiffer
 
 // Thicknesses from the thinnest to the thickest sheet of the brief, and beyond: the
 // bending/stretching stiffness ratio spans 1e-8 .. 1e-1.
-INSTANTIATE_TEST_SUITE_P(Thicknesses, ShellDensityDerivatives,
-                         ::testing::Values(1e-4, 1e-3, 0.02, 0.3));
+INSTANTIATE_TEST_SUITE_P(
+    ThicknessesAndLaws, ShellDensityDerivatives,
+    ::testing::Combine(::testing::Values(1e-4, 1e-3, 0.02, 0.3),
+                       ::testing::Values(StretchingLaw::kSaintVenantKirchhoff,
+                                         StretchingLaw::kNeoHookean)));
 
 TEST(ShellDensity, RigidRotationLeavesEnergyUnchanged) {
   std::mt19937 rng(3);
@@ -135,7 +147,7 @@ TEST(ShellDensity, RigidRotationLeavesEnergyUnchanged) {
 TEST(ShellDensity, IsotropicStrainGivesClosedFormDensities) {
   // a = (1 + t)^2 abar with abar = I, b = diag(k1, k2): U_s = 2 (1 + nu) e^2 with
   // e = ((1+t)^2 - 1)/2, U_b = k1^2 + k2^2 + 2 nu k1 k2.
-  Material material{2.0, 0.25};
+  const Material material{2.0, 0.25, StretchingLaw::kSaintVenantKirchhoff};
   const double t = 0.1, k1 = 0.3, k2 = -0.2, h = 0.1;
   SurfaceJet jet{{1 + t, 0, 0}, {0, 1 + t, 0}, {0, 0, k1}, {0, 0, k2}, {0, 0, 0}};
   const ShellPointRest rest{Eigen::Matrix2d::Identity(), 0.5, h};
@@ -151,6 +163,76 @@ TEST(ShellDensity, IsotropicStrainGivesClosedFormDensities) {
   EXPECT_NEAR(p.bending, 0.5 * bending_modulus(material, h) * Ub, 1e-15);
   EXPECT_NEAR(p.bending_density_integral, 0.5 * Ub, 1e-15);
   EXPECT_NEAR(p.current_area, 0.5 * (1 + t) * (1 + t), 1e-15);
+}
+
+TEST(ShellDensity, NeoHookeanIsotropicStrainGivesClosedForm) {
+  // a = (1 + t)^2 I, abar = I: tr M = 2 (1+t)^2, L = ln det M = 4 ln(1+t).
+  const Material material{2.0, 0.25, StretchingLaw::kNeoHookean};
+  const double t = -0.3, h = 0.1, nu = material.poisson_ratio;
+  SurfaceJet jet{{1 + t, 0, 0}, {0, 1 + t, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const ShellPointRest rest{Eigen::Matrix2d::Identity(), 0.5, h};
+  const double L = 4 * std::log(1 + t);
+  const double Us = 0.5 * (1 - nu) * (2 * (1 + t) * (1 + t) - 2 - L) + 0.25 * nu * L * L;
+  EXPECT_NEAR(shell_point_energy(jet, rest, material).stretching,
+              0.5 * stretching_modulus(material, h) * Us, 1e-15);
+}
+
+TEST(ShellDensity, LawsAgreeToSecondOrderInTheStrain) {
+  // Both laws are nu (tr e)^2 + (1 - nu) tr(e^2) + O(e^3): halving a random strain halves the
+  // relative difference of the stretching energies (ratio 2 within 5%), and at strain 1e-4 it
+  // is below 1e-3.
+  std::mt19937 rng(5);
+  const ShellPointRest rest = random_rest(rng, 0.01);
+  const Eigen::Matrix2d direction = (Eigen::Matrix2d() << 0.7, 0.2, 0.2, -0.4).finished();
+  auto relative_difference = [&](double size) {
+    // a = abar + 2 size * direction realised by a1, a2 = columns of chol(a).
+    const Eigen::Matrix2d a = rest.target_metric + 2 * size * direction;
+    const Eigen::Matrix2d U = a.llt().matrixU();
+    const SurfaceJet jet{{U(0, 0), 0, 0}, {U(0, 1), U(1, 1), 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    const double svk = shell_point_energy(
+        jet, rest, {1e4, 0.3, StretchingLaw::kSaintVenantKirchhoff}).stretching;
+    const double nh =
+        shell_point_energy(jet, rest, {1e4, 0.3, StretchingLaw::kNeoHookean}).stretching;
+    return std::abs(nh - svk) / svk;
+  };
+  EXPECT_LT(relative_difference(1e-4), 1e-3);
+  EXPECT_NEAR(relative_difference(2e-3) / relative_difference(1e-3), 2.0, 0.1);
+}
+
+// Smallest eigenvalue over in-plane directions n of the acoustic tensor
+// Q_ik(n) = d2W / dF_ia dF_kb n_a n_b of a flat sheet with F = diag(stretch_1, stretch_2),
+// read from the jet Hessian (a_a = F e_a; the in-plane entries of a_1, a_2).
+double smallest_acoustic_eigenvalue(double stretch_1, double stretch_2, StretchingLaw law) {
+  const Material material{1e4, 0.3, law};
+  const SurfaceJet jet{{stretch_1, 0, 0}, {0, stretch_2, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const ShellPointRest rest{Eigen::Matrix2d::Identity(), 0.5, 0.01};
+  JetVector g;
+  JetMatrix H;
+  shell_point_hessian(jet, rest, material, g, H);
+  const int block[2] = {kJetA1, kJetA2};
+  double smallest = 1e300;
+  for (int k = 0; k < 180; ++k) {
+    const double angle = M_PI * k / 180.0, n[2] = {std::cos(angle), std::sin(angle)};
+    Eigen::Matrix2d Q = Eigen::Matrix2d::Zero();
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b) Q(i, j) += H(block[a] + i, block[b] + j) * n[a] * n[b];
+    smallest = std::min(smallest, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Q)
+                                      .eigenvalues()(0));
+  }
+  return smallest;
+}
+
+TEST(ShellDensity, SaintVenantKirchhoffLosesEllipticityUnderLargeCompression) {
+  // With the radial stretch 1 and nu = 0.3 the quadratic law loses ellipticity below a
+  // circumferential stretch of 0.655 (an independent 2x2 computation gives the threshold); the
+  // neo-Hookean law stays elliptic down to 0.2.
+  EXPECT_GT(smallest_acoustic_eigenvalue(1.0, 0.67, StretchingLaw::kSaintVenantKirchhoff), 0.0);
+  EXPECT_LT(smallest_acoustic_eigenvalue(1.0, 0.64, StretchingLaw::kSaintVenantKirchhoff), 0.0);
+  for (double stretch : {0.9, 0.64, 0.4, 0.2})
+    EXPECT_GT(smallest_acoustic_eigenvalue(1.0, stretch, StretchingLaw::kNeoHookean), 0.0)
+        << "stretch " << stretch;
 }
 
 }  // namespace
