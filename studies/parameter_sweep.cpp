@@ -212,8 +212,12 @@ void open_sweep_directory(const std::string& dir, const Scene& base,
         if (recorded["parameters"] != plan["parameters"])
           throw std::invalid_argument("--resume: the parameters differ from those of " +
                                       plan_file + " (" + recorded["parameters"].dump() + ")");
-        if (recorded["base_scene"] != plan["base_scene"]) {
-          const Json diff = Json::diff(recorded["base_scene"], plan["base_scene"]);
+        // Read through the scene reader, so that a key added since the plan was written
+        // compares as its default (the value the recorded sweep ran with).
+        const Json recorded_scene = Json::parse(scene_to_json(
+            parse_scene(recorded["base_scene"].dump(), plan_file + ", base_scene")));
+        if (recorded_scene != plan["base_scene"]) {
+          const Json diff = Json::diff(recorded_scene, plan["base_scene"]);
           throw std::invalid_argument("--resume: the base scene differs from that of " +
                                       plan_file + " at " +
                                       diff.at(0).value("path", std::string("?")));

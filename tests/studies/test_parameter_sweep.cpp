@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "studies/parameter_sweep.hpp"
 #include "studies/scratch_directory.hpp"
 #include "tests/support/error_message.hpp"
@@ -95,6 +97,23 @@ TEST_F(ParameterSweepFiles, OpeningRefusesBadValuesUsedDirectoriesAndOtherPlans)
   EXPECT_FALSE(fs::exists(fs::path(dir) / "point_000"));
   EXPECT_TRUE(fs::exists(fs::path(dir) / "notes.txt"));
   EXPECT_NO_THROW(open_sweep_directory(dir, changed, other, ExistingOutput::Resume));
+}
+
+TEST_F(ParameterSweepFiles, APlanWrittenBeforeAKeyExistedResumesWithThatKeysDefault) {
+  const std::string dir = path("sweep");
+  const std::vector<SweepParameter> good{parse_sweep_parameter("thickness=0.03,0.04")};
+  open_sweep_directory(dir, default_scene(), good, ExistingOutput::Refuse);
+  // Remove a key from the recorded base scene, as a plan of an older version lacks it.
+  const fs::path plan_file = fs::path(dir) / "sweep_plan.json";
+  nlohmann::json plan = nlohmann::json::parse(std::ifstream(plan_file));
+  ASSERT_EQ(plan["base_scene"]["growth"].erase("smoothing_radius"), 1u);
+  std::ofstream(plan_file) << plan.dump(2);
+  EXPECT_NO_THROW(open_sweep_directory(dir, default_scene(), good, ExistingOutput::Resume));
+  Scene smoothed = default_scene();
+  smoothed.growth.smoothing_radius = 0.01;
+  EXPECT_NE(error_of([&] { open_sweep_directory(dir, smoothed, good, ExistingOutput::Resume); })
+                .find("/growth/smoothing_radius"),
+            std::string::npos);
 }
 
 TEST_F(ParameterSweepFiles, SummariesHoldEveryPointWithItsStatusAndScalarResults) {
