@@ -1,6 +1,7 @@
 // Cost of ShellModel::evaluate: energy only, energy + gradient, energy + gradient + Hessian,
 // on uniform discs of about 2k, 20k and 80k control vertices, with 1 and 2 assembly threads,
-// and the cost of the quadrature degree at the middle size. Results: docs/performance.md.
+// the cost of the quadrature degree at the middle size, and of the stretching law there.
+// Results: docs/performance.md.
 //
 // State: the flat reference disc (R = 1 m) bent into the saddle z += 0.2 (x^2 - y^2) at
 // phi_e = 1, h = 0.02 m: every element is curved and stretched, so no branch of the energy
@@ -33,10 +34,11 @@ struct Scene {
 };
 
 // Building an 80k-vertex model takes longer than evaluating it, so scenes are built once per
-// (rings, threads, quadrature degree) and shared by the benchmarks of this program.
-Scene& scene(int rings, int threads, int degree) {
-  static std::map<std::tuple<int, int, int>, Scene> cache;
-  const auto key = std::make_tuple(rings, threads, degree);
+// (rings, threads, quadrature degree, law) and shared by the benchmarks of this program.
+Scene& scene(int rings, int threads, int degree,
+             StretchingLaw law = StretchingLaw::kSaintVenantKirchhoff) {
+  static std::map<std::tuple<int, int, int, StretchingLaw>, Scene> cache;
+  const auto key = std::make_tuple(rings, threads, degree, law);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
 
@@ -47,6 +49,7 @@ Scene& scene(int rings, int threads, int degree) {
   settings.thickness = constant_thickness(0.02);
   settings.quadrature_degree = degree;
   settings.threads = threads;
+  settings.material.stretching_law = law;
   Scene s;
   s.model = std::make_unique<ShellModel>(make_disc_mesh(mesh), settings);
   s.model->set_excess_angle(1.0);
@@ -59,8 +62,9 @@ Scene& scene(int rings, int threads, int degree) {
   return cache.emplace(key, std::move(s)).first->second;
 }
 
-void run(benchmark::State& state, Mode mode, int rings, int threads, int degree) {
-  Scene& s = scene(rings, threads, degree);
+void run(benchmark::State& state, Mode mode, int rings, int threads, int degree,
+         StretchingLaw law = StretchingLaw::kSaintVenantKirchhoff) {
+  Scene& s = scene(rings, threads, degree, law);
   Eigen::VectorXd* gradient = mode == Mode::Energy ? nullptr : &s.gradient;
   Eigen::SparseMatrix<double>* hessian = mode == Mode::Hessian ? &s.hessian : nullptr;
   for (auto _ : state) benchmark::DoNotOptimize(s.model->evaluate(s.x, gradient, hessian));
@@ -96,6 +100,12 @@ void BM_HessianQuadrature(benchmark::State& state) {
   run(state, Mode::Hessian, kMediumRings, 1, static_cast<int>(state.range(0)));
 }
 
+// Argument: {law} (0 Saint Venant-Kirchhoff, 1 neo-Hookean); middle mesh, one thread.
+void BM_HessianStretchingLaw(benchmark::State& state) {
+  run(state, Mode::Hessian, kMediumRings, 1, 2,
+      state.range(0) == 0 ? StretchingLaw::kSaintVenantKirchhoff : StretchingLaw::kNeoHookean);
+}
+
 void size_and_thread_args(benchmark::internal::Benchmark* b) {
   b->ArgNames({"rings", "threads"});
   for (int rings : {kSmallRings, kMediumRings, kLargeRings})
@@ -117,6 +127,8 @@ BENCHMARK(BM_Hessian)->Apply(size_and_thread_args);
 BENCHMARK(BM_EnergyQuadrature)->Apply(degree_args);
 BENCHMARK(BM_GradientQuadrature)->Apply(degree_args);
 BENCHMARK(BM_HessianQuadrature)->Apply(degree_args);
+BENCHMARK(BM_HessianStretchingLaw)->ArgName("law")->Arg(0)->Arg(1)->UseRealTime()->Unit(
+    benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace growshell
