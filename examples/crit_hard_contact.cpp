@@ -89,10 +89,12 @@ bool stable_segment(const BranchSamples& b, std::size_t i) {
   return b.table.at(i, "n_negative") == 0 && b.table.at(i + 1, "n_negative") == 0;
 }
 
+/// The saved state of `row` of branch `name`: point_NNNNN.state, or .txt from an earlier version.
 std::string point_file(const std::string& run, const std::string& name, std::size_t row) {
-  char file[64];
-  std::snprintf(file, sizeof file, "/states_%s/point_%05zu.txt", name.c_str(), row);
-  return run + file;
+  const std::string stem = run + "/states_" + name + "/" + saved_state_name(static_cast<int>(row));
+  if (std::filesystem::exists(stem)) return stem;
+  const std::string text = stem.substr(0, stem.rfind('.')) + ".txt";
+  return std::filesystem::exists(text) ? text : stem;
 }
 
 /// The saved sample of `row`, checked against the table.

@@ -78,7 +78,7 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           branch; from 5.5 it turns onto the bifurcating one, see
                           docs/validation.md; an event symmetry_lost reports such a switch)
   --start STATE           start from a saved contact-free state instead (trace_disc's
-                          DIR/states/point_NNNNN.txt of the same scene)
+                          DIR/states/point_NNNNN.state of the same scene)
   --stiffness-factor F    penalty stiffness k = F Y l^2 / h (l: proxy spacing; default 10)
   --segments N            contact proxy: segments per element edge (default 1)
   --exclusion-radius R    pairs closer than R (m) in the reference are neighbours, not
@@ -89,7 +89,7 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --max-step S            largest arclength step (default 0.05)
   --tolerance T           corrector force tolerance relative to Y h^3 / R (default 1e-6)
   --grow-from STATE       only stage 5: grow on from a saved stable state of an earlier run
-                          (e.g. DIR/states_skewed/point_NNNNN.txt) up to --phi-wind
+                          (e.g. DIR/states_skewed/point_NNNNN.state) up to --phi-wind
   --wind-pairs WHICH      pairs penalised while growing beyond the skewed branch (stage 5):
                           triangles (default: every near triangle of each proxy vertex, which
                           keeps a vertex between two layers off both while the layers slide
@@ -316,8 +316,10 @@ int run(int argc, char** argv) {
     b.csv.flush();
     std::ostringstream name;
     name << std::setw(5) << std::setfill('0') << b.index++;
-    examples::save_point(out_dir + "/states_" + b.name + "/point_" + name.str() + ".txt", s.sample);
-    if (scene.output.write_vtk && (b.index - 1) % scene.output.snapshot_every == 0) {
+    examples::save_point(out_dir + "/states_" + b.name + "/" + saved_state_name(b.index - 1),
+                         s.sample);
+    if (scene.output.write_vtk && scene.output.snapshot_every > 0 &&
+        (b.index - 1) % scene.output.snapshot_every == 0) {
       const std::string shell_file = b.name + "_" + name.str() + ".vtu";
       write_vtu(out_dir + "/" + shell_file, shell_snapshot(model, s.sample.x, 2));
       if (gaps)

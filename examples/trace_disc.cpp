@@ -37,7 +37,7 @@ const char* kUsage = R"(usage: trace_disc [scene.json] [options]
   --min-step S        smallest continuation step before the trace gives up (default 1e-4)
   --max-tangent-angle A  largest angle between successive tangents (rad, default 0.3);
                       raise it where a nearly broken symmetry bends the branch sharply
-  --resume FILE       restart from a saved point (states/point_NNNNN.txt of an earlier run)
+  --resume FILE       restart from a saved point (states/point_NNNNN.state of an earlier run)
   --eigenmodes K      at each special point write the K lowest eigenmodes (default 2; 0 = off)
   --symmetric-subspace 0|1  trace the cone among the states with the mirrors of its folds
                       (y -> -y, and x -> -x for an even number of folds): the trace cannot turn

@@ -260,8 +260,13 @@ void BranchRecord::adopt_uncommitted() {
     for (const std::string& line : event_lines_) events_.push_back(summary_of_line(line));
   }
   fs::create_directories(path("states"));
-  while (fs::exists(path("states/" + saved_state_name(next_state_)))) ++next_state_;
-  if (next_state_ > 0) last_state_ = "states/" + saved_state_name(next_state_ - 1);
+  // The saved states in either format (an earlier version wrote .txt): the next index is
+  // one past the last one there.
+  const std::vector<fs::path> saved = saved_state_files(directory_);
+  if (!saved.empty()) {
+    next_state_ = saved_state_index(saved.back().filename().string()) + 1;
+    last_state_ = "states/" + saved.back().filename().string();
+  }
   remove_temporaries(directory_);
   remove_temporaries(path("states"));
   rewrite_events();

@@ -3,7 +3,7 @@
 /// The on-disk record of a traced branch, in one directory DIR:
 ///   - DIR/branch.csv: a header row of column names, then one row of numbers per converged
 ///     sample (12 significant digits), each row appended whole with one write;
-///   - DIR/states/point_NNNNN.txt: every converged sample's state (studies/saved_state.hpp);
+///   - DIR/states/point_NNNNN.state: every converged sample's state (studies/saved_state.hpp);
 ///   - DIR/events.json: a JSON array of the special points and events, one object per line;
 ///   - DIR/branch.pvd and its VTK snapshots, and other VTK files (e.g. mode shapes);
 ///   - DIR/record.json: what of all this has been committed (the number of rows, the next
@@ -85,9 +85,9 @@ class BranchRecord {
   double value(std::size_t row, const std::string& column) const;
 
   // ---- states/ ----
-  /// Index the next saved state gets (point_NNNNN.txt).
+  /// Index the next saved state gets (point_NNNNN.state).
   int next_state_index() const { return next_state_; }
-  /// Saves the sample as states/point_NNNNN.txt (the next index) and returns that path
+  /// Saves the sample as states/point_NNNNN.state (the next index) and returns that path
   /// relative to the directory.
   std::string save_state(const BranchSample& sample);
   /// The last saved state (relative path), empty if there is none.

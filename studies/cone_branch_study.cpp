@@ -80,8 +80,8 @@ void validate_options(const ConeBranchStudyOptions& o) {
 
 /// "point_NNNNN": the name of the index-th saved state without its extension.
 std::string point_stem(int index) {
-  std::string name = saved_state_name(index);
-  return name.substr(0, name.size() - 4);
+  const std::string name = saved_state_name(index);
+  return name.substr(0, name.rfind('.'));
 }
 
 /// One run of the study: the model, the trace's callbacks and the record they write.
@@ -261,8 +261,9 @@ void ConeBranchRun::on_sample(const BranchSample& s) {
   previous_defect_ = m.s4_defect;
   const int index = record_->next_state_index();
   record_->save_state(s);
-  if (samples_++ % scene_.output.snapshot_every == 0)
-    snapshot(s.parameter, s.x, point_stem(index) + ".vtu");
+  const int every = scene_.output.snapshot_every;
+  if (every > 0 && samples_ % every == 0) snapshot(s.parameter, s.x, point_stem(index) + ".vtu");
+  ++samples_;
   record_->commit();
 }
 
@@ -275,7 +276,7 @@ void ConeBranchRun::record_symmetry_lost(const BranchSample& s, const ConeSample
   j << std::setprecision(10) << "{\"kind\": \"symmetry_lost\", \"phi_e\": " << s.parameter
     << ", \"s4_defect\": " << m.s4_defect << ", \"chord_up\": " << m.chord_up
     << ", \"chord_down\": " << m.chord_down << ", \"threshold\": " << threshold
-    << ", \"state\": \"states/" << point_stem(record_->next_state_index()) << ".txt\"";
+    << ", \"state\": \"states/" << saved_state_name(record_->next_state_index()) << "\"";
   RecordedEvent summary{"symmetry_lost", s.parameter, branch_, {{"s4_defect", m.s4_defect}}};
   if (std::isfinite(previous_defect_)) {
     const double crossing = previous_phi_ + (threshold - previous_defect_) /

@@ -23,7 +23,7 @@ namespace growshell {
 enum class ConeBranchStart {
   /// From the flat sheet (a fresh record: an earlier record in the directory is replaced).
   Flat,
-  /// From the saved state `resume_file` (any states/point_NNNNN.txt), in the direction of
+  /// From the saved state `resume_file` (any states/point_NNNNN.state), in the direction of
   /// continuation.direction (forward: increasing phi_e). The record in the directory is
   /// continued from its last commit and the start is recorded again as the first new row
   /// (trace_disc --resume).

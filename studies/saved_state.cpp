@@ -1,56 +1,82 @@
 #include "studies/saved_state.hpp"
 
 #include <algorithm>
-#include <cstdio>
+#include <bit>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
 #include "studies/atomic_file.hpp"
 
 namespace growshell {
+namespace {
 
-std::string saved_state_name(int index) {
-  std::ostringstream name;
-  name << "point_" << std::setw(5) << std::setfill('0') << index << ".txt";
-  return name.str();
+static_assert(std::endian::native == std::endian::little,
+              "the binary state format is little-endian; a big-endian build needs byte swaps");
+
+constexpr std::string_view kMagic = "growshell-state 1\n";
+constexpr std::string_view kSuffixes[] = {".state", ".txt"};
+
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
 }
 
-int saved_state_index(const std::string& file_name) {
-  const std::string prefix = "point_", suffix = ".txt";
-  if (file_name.size() < prefix.size() + 5 + suffix.size() ||
-      file_name.compare(0, prefix.size(), prefix) != 0 ||
-      file_name.compare(file_name.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return -1;
-  const std::string digits =
-      file_name.substr(prefix.size(), file_name.size() - prefix.size() - suffix.size());
-  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return -1;
-  if (digits.size() > 9) return -1;
-  return std::stoi(digits);
+template <class T>
+void put(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
-void save_branch_state(const std::string& path, const BranchSample& s) {
-  std::ostringstream out;
-  out << std::setprecision(17) << s.parameter << '\n'
-      << s.tangent_parameter << '\n'
-      << s.x.size() << '\n';
-  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.x(i) << '\n';
-  for (Eigen::Index i = 0; i < s.x.size(); ++i) out << s.tangent_state(i) << '\n';
-  write_file_atomically(path, out.str());
+void put_vector(std::string& out, const Eigen::VectorXd& v) {
+  out.append(reinterpret_cast<const char*>(v.data()),
+             static_cast<std::size_t>(v.size()) * sizeof(double));
 }
 
-BranchSample load_branch_state(const std::string& path, Eigen::Index n) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read saved point " + path);
+[[noreturn]] void does_not_fit(const std::string& path, long long size, Eigen::Index n) {
+  throw std::runtime_error("saved point " + path + " does not fit this scene (" +
+                           std::to_string(size) + " unknowns, expected " + std::to_string(n) +
+                           ")");
+}
+
+BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen::Index n) {
+  std::size_t at = kMagic.size();
+  auto take = [&](void* to, std::size_t size) {
+    if (bytes.size() < at + size) throw std::runtime_error("saved point " + path + " is truncated");
+    std::memcpy(to, bytes.data() + at, size);
+    at += size;
+  };
+  std::int64_t size = 0;
+  take(&size, sizeof size);
+  if (size != n) does_not_fit(path, size, n);
+  BranchSample s;
+  take(&s.parameter, sizeof(double));
+  take(&s.tangent_parameter, sizeof(double));
+  s.x.resize(n);
+  s.tangent_state.resize(n);
+  take(s.x.data(), static_cast<std::size_t>(n) * sizeof(double));
+  take(s.tangent_state.data(), static_cast<std::size_t>(n) * sizeof(double));
+  const std::uint64_t expected = fnv1a(bytes.substr(0, at));
+  std::uint64_t stored = 0;
+  take(&stored, sizeof stored);
+  if (at != bytes.size())
+    throw std::runtime_error("saved point " + path + " has " +
+                             std::to_string(bytes.size() - at) + " bytes after its end");
+  if (stored != expected)
+    throw std::runtime_error("saved point " + path + " is damaged (its hash does not match)");
+  return s;
+}
+
+BranchSample parse_text(const std::string& path, const std::string& text, Eigen::Index n) {
+  std::istringstream in(text);
   BranchSample s;
   Eigen::Index size = 0;
   in >> s.parameter >> s.tangent_parameter >> size;
-  if (!in || size != n)
-    throw std::runtime_error("saved point " + path + " does not fit this scene (" +
-                             std::to_string(size) + " unknowns, expected " + std::to_string(n) +
-                             ")");
+  if (!in || size != n) does_not_fit(path, static_cast<long long>(size), n);
   s.x.resize(n);
   s.tangent_state.resize(n);
   for (Eigen::Index i = 0; i < n; ++i) in >> s.x(i);
@@ -59,11 +85,65 @@ BranchSample load_branch_state(const std::string& path, Eigen::Index n) {
   return s;
 }
 
+}  // namespace
+
+std::string saved_state_name(int index) {
+  std::ostringstream name;
+  name << "point_" << std::setw(5) << std::setfill('0') << index << kSuffixes[0];
+  return name.str();
+}
+
+int saved_state_index(const std::string& file_name) {
+  const std::string_view prefix = "point_";
+  if (file_name.compare(0, prefix.size(), prefix) != 0) return -1;
+  for (std::string_view suffix : kSuffixes) {
+    if (file_name.size() < prefix.size() + 5 + suffix.size() ||
+        file_name.compare(file_name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string digits =
+        file_name.substr(prefix.size(), file_name.size() - prefix.size() - suffix.size());
+    if (digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return -1;
+    return std::stoi(digits);
+  }
+  return -1;
+}
+
+void save_branch_state(const std::string& path, const BranchSample& s) {
+  if (s.tangent_state.size() != s.x.size())
+    throw std::invalid_argument("save_branch_state: the tangent has " +
+                                std::to_string(s.tangent_state.size()) + " entries, the state " +
+                                std::to_string(s.x.size()));
+  std::string out(kMagic);
+  out.reserve(kMagic.size() + 16 * static_cast<std::size_t>(s.x.size()) + 32);
+  put(out, static_cast<std::int64_t>(s.x.size()));
+  put(out, s.parameter);
+  put(out, s.tangent_parameter);
+  put_vector(out, s.x);
+  put_vector(out, s.tangent_state);
+  put(out, fnv1a(out));
+  write_file_atomically(path, out);
+}
+
+BranchSample load_branch_state(const std::string& path, Eigen::Index n) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read saved point " + path);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (std::string_view(bytes).substr(0, kMagic.size()) == kMagic)
+    return parse_binary(path, bytes, n);
+  return parse_text(path, bytes, n);
+}
+
 std::vector<std::filesystem::path> saved_state_files(const std::string& run_dir) {
+  std::vector<std::pair<int, std::filesystem::path>> indexed;
+  for (const auto& entry : std::filesystem::directory_iterator(run_dir + "/states")) {
+    const int index = saved_state_index(entry.path().filename().string());
+    if (index >= 0) indexed.emplace_back(index, entry.path());
+  }
+  std::sort(indexed.begin(), indexed.end());
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(run_dir + "/states"))
-    if (saved_state_index(entry.path().filename().string()) >= 0) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
+  for (auto& [index, path] : indexed) files.push_back(std::move(path));
   return files;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// One converged branch point on disk (trace_disc's states/point_NNNNN.txt), for the programs
+// One converged branch point on disk (trace_disc's states/point_NNNNN.state), for the programs
 // that read a trace's states: the library's format (studies/saved_state.hpp: phi_e, dphi_e/ds,
 // the number of unknowns, then x and dx/ds at full precision), under the names the programs
 // use.
@@ -25,7 +25,8 @@ inline BranchSample load_point(const std::string& path, Eigen::Index n) {
   return load_branch_state(path, n);
 }
 
-/// The saved points of a run directory (RUN_DIR/states/point_NNNNN.txt), sorted by name, i.e.
+/// The saved points of a run directory (RUN_DIR/states/point_NNNNN.state, or .txt of an
+/// earlier version), in trace order.
 /// in trace order. Throws std::filesystem::filesystem_error if RUN_DIR/states cannot be read.
 inline std::vector<std::filesystem::path> saved_point_files(const std::string& run_dir) {
   return saved_state_files(run_dir);

@@ -467,7 +467,7 @@ void validate_scene(const Scene& scene) {
   require_nonnegative(c.perturbation_amplitude, "continuation.perturbation_amplitude");
 
   if (scene.output.directory.empty()) fail("output.directory must not be empty");
-  require_at_least(scene.output.snapshot_every, 1, "output.snapshot_every");
+  require_at_least(scene.output.snapshot_every, 0, "output.snapshot_every");
 
   const SceneStudy& st = scene.study;
   require_positive(st.tolerance, "study.tolerance");

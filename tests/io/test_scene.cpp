@@ -83,7 +83,7 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.continuation.perturbation_amplitude, 1e-3);
   EXPECT_EQ(s.continuation.seed, 1u);
   EXPECT_EQ(s.output.directory, "out");
-  EXPECT_GE(s.output.snapshot_every, 1);
+  EXPECT_EQ(s.output.snapshot_every, 0);
   EXPECT_EQ(s.study.kind, StudyKind::ConeBranch);
   EXPECT_EQ(study_kind_name(s.study.kind), "cone_branch");
   EXPECT_FALSE(s.study.through_contact);
@@ -436,7 +436,7 @@ TEST(SceneValidation, MeshAndContinuationRanges) {
             "continuation.phi_min = 0 must be < continuation.phi_max = 0");
   EXPECT_EQ(message([](Scene& s) { s.continuation.perturbation_amplitude = -1e-3; }),
             "continuation.perturbation_amplitude = -0.001 must be finite and >= 0");
-  EXPECT_EQ(message([](Scene& s) { s.output.snapshot_every = 0; }), "output.snapshot_every = 0 must be >= 1");
+  EXPECT_EQ(message([](Scene& s) { s.output.snapshot_every = -1; }), "output.snapshot_every = -1 must be >= 0");
   EXPECT_EQ(message([](Scene& s) { s.output.directory.clear(); }), "output.directory must not be empty");
   EXPECT_EQ(message([](Scene& s) { s.growth.center.y() = NAN; }), "growth.center[1] = nan must be finite");
 }

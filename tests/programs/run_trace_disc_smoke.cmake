@@ -27,7 +27,7 @@ endif()
 if(NOT events MATCHES "\"eigenvalues\": \\[")
   message(FATAL_ERROR "events.json lacks the eigenvalues at the branch point:\n${events}")
 endif()
-foreach(f scene.json branch.pvd last.vtu states/point_00005.txt special_0_mode_0.vtu)
+foreach(f scene.json branch.pvd last.vtu states/point_00005.state special_0_mode_0.vtu)
   if(NOT EXISTS "${OUT}/${f}")
     message(FATAL_ERROR "missing output ${f}")
   endif()
@@ -67,7 +67,7 @@ endfunction()
 expect_two_folds("${rows}" 2 5 "branch.csv")
 expect_symmetry_columns("${rows}" 1 5 "branch.csv")
 execute_process(COMMAND "${PROGRAM}" --h 0.04 --size-slope 0.25 --phi-max 0.4 --out "${OUT}"
-                        --resume "${OUT}/states/point_00005.txt"
+                        --resume "${OUT}/states/point_00005.state"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT log MATCHES "resuming from")
   message(FATAL_ERROR "resume failed (${rc}):\n${log}\n${err}")

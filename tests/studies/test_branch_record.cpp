@@ -62,10 +62,10 @@ TEST_F(BranchRecordTest, FreshRecordWritesHeaderRowsStatesAndEvents) {
             "\"phi_e\": 0.75}\n]\n");
   EXPECT_EQ(r.events()[1].value("eb_hat"), 2.5);
   EXPECT_FALSE(r.events()[1].value("eb").has_value());
-  EXPECT_EQ(listing("states"), (std::vector<std::string>{"point_00000.txt", "point_00001.txt"}));
-  EXPECT_EQ(r.last_state(), "states/point_00001.txt");
-  EXPECT_EQ(load_branch_state(path("states/point_00001.txt"), 6).parameter, 1.0 / 3.0);
-  EXPECT_EQ(BranchRecord::committed_last_state(dir_.string()), "states/point_00001.txt");
+  EXPECT_EQ(listing("states"), (std::vector<std::string>{"point_00000.state", "point_00001.state"}));
+  EXPECT_EQ(r.last_state(), "states/point_00001.state");
+  EXPECT_EQ(load_branch_state(path("states/point_00001.state"), 6).parameter, 1.0 / 3.0);
+  EXPECT_EQ(BranchRecord::committed_last_state(dir_.string()), "states/point_00001.state");
   for (const std::string& name : listing()) EXPECT_FALSE(is_temporary_file_name(name)) << name;
 }
 
@@ -81,7 +81,7 @@ TEST_F(BranchRecordTest, ContinueCutsTheRecordBackToItsLastCommit) {
     r.add_event("{\"kind\": \"contact\", \"phi_e\": 0.65}", {"contact", 0.65, "cone", {}});
     r.save_state(sample(0.7));
   }
-  write(path("states/.point_00003.txt.tmp"), "partial");
+  write(path("states/.point_00003.state.tmp"), "partial");
   write(path(".branch.pvd.tmp"), "partial");
   BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Continue);
   EXPECT_EQ(r.rows(), 2u);
@@ -89,15 +89,15 @@ TEST_F(BranchRecordTest, ContinueCutsTheRecordBackToItsLastCommit) {
   ASSERT_EQ(r.events().size(), 1u);
   EXPECT_EQ(r.events()[0].branch, "flat");
   EXPECT_EQ(read(path("events.json")), "[\n  {\"kind\": \"branch_point\", \"phi_e\": 0.5}\n]\n");
-  EXPECT_EQ(listing("states"), (std::vector<std::string>{"point_00000.txt", "point_00001.txt"}));
-  EXPECT_EQ(r.last_state(), "states/point_00001.txt");
+  EXPECT_EQ(listing("states"), (std::vector<std::string>{"point_00000.state", "point_00001.state"}));
+  EXPECT_EQ(r.last_state(), "states/point_00001.state");
   EXPECT_EQ(r.next_state_index(), 2);
   for (const std::string& name : listing()) EXPECT_FALSE(is_temporary_file_name(name)) << name;
   // The record goes on from there.
   record_sample(r, 0.8);
   EXPECT_EQ(read(path("branch.csv")),
             "phi_e,n_negative,s4_defect\n0.5,0,5e-08\n0.6,0,6e-08\n0.8,0,8e-08\n");
-  EXPECT_EQ(r.last_state(), "states/point_00002.txt");
+  EXPECT_EQ(r.last_state(), "states/point_00002.state");
 }
 
 TEST_F(BranchRecordTest, FreshRecordReplacesAnEarlierOne) {
@@ -129,8 +129,9 @@ TEST_F(BranchRecordTest, ContinueAdoptsADirectoryWithoutRecordJson) {
   write(path("events.json"),
         "[\n  {\"kind\": \"branch_point\", \"phi_e\": 0.05, \"multiplicity\": 2},\n"
         "  {\"kind\": \"symmetry_lost\", \"phi_e\": 0.2, \"chord_up\": nan}\n]\n");
-  save_branch_state(path("states/point_00000.txt"), sample(0.1));
-  save_branch_state(path("states/point_00001.txt"), sample(0.2));
+  // Its states in the text format of that version.
+  write(path("states/point_00000.txt"), "0.1\n1\n6\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n");
+  write(path("states/point_00001.txt"), "0.2\n1\n6\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n");
   BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Continue);
   EXPECT_EQ(r.rows(), 2u);
   ASSERT_EQ(r.events().size(), 2u);
@@ -138,6 +139,10 @@ TEST_F(BranchRecordTest, ContinueAdoptsADirectoryWithoutRecordJson) {
   EXPECT_EQ(r.events()[1].phi_e, 0.2);
   EXPECT_EQ(r.events()[1].branch, "");
   EXPECT_EQ(r.next_state_index(), 2);
+  EXPECT_EQ(r.last_state(), "states/point_00001.txt");
+  EXPECT_EQ(load_branch_state(path(r.last_state()), 6).parameter, 0.2);
+  EXPECT_EQ(r.save_state(sample(0.3)), "states/point_00002.state");
+  EXPECT_EQ(saved_state_files(dir_.string()).back().filename(), "point_00002.state");
   EXPECT_TRUE(BranchRecord::exists(dir_.string()));
   // Without any record a continued one starts fresh.
   fs::remove_all(path("other"));
@@ -162,11 +167,49 @@ TEST_F(BranchRecordTest, ContinueRefusesARecordThatDoesNotFit) {
 }
 
 TEST(SavedState, NamesAndTheirIndices) {
-  EXPECT_EQ(saved_state_name(12), "point_00012.txt");
-  EXPECT_EQ(saved_state_index("point_00012.txt"), 12);
-  EXPECT_EQ(saved_state_index(".point_00012.txt.tmp"), -1);
-  EXPECT_EQ(saved_state_index("point_0001x.txt"), -1);
+  EXPECT_EQ(saved_state_name(12), "point_00012.state");
+  EXPECT_EQ(saved_state_index("point_00012.state"), 12);
+  EXPECT_EQ(saved_state_index("point_00012.txt"), 12);  // an earlier version's name
+  EXPECT_EQ(saved_state_index(".point_00012.state.tmp"), -1);
+  EXPECT_EQ(saved_state_index("point_0001x.state"), -1);
+  EXPECT_EQ(saved_state_index("point_00012.csv"), -1);
   EXPECT_EQ(saved_state_index("eigenvalues.csv"), -1);
+}
+
+TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
+  BranchSample s;
+  s.parameter = 1.0 / 3.0;
+  s.tangent_parameter = -std::nextafter(0.7, 1.0);
+  s.x = Eigen::VectorXd::LinSpaced(5, -1e-300, 7.0);
+  s.x(2) = std::numeric_limits<double>::denorm_min();
+  s.tangent_state = Eigen::VectorXd::Constant(5, std::sqrt(2.0));
+  save_branch_state(path("a.state"), s);
+  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 16u + 2u * 5u * 8u + 8u);
+  const BranchSample r = load_branch_state(path("a.state"), 5);
+  EXPECT_EQ(r.parameter, s.parameter);
+  EXPECT_EQ(r.tangent_parameter, s.tangent_parameter);
+  EXPECT_EQ(r.x, s.x);  // exact, not to a tolerance
+  EXPECT_EQ(r.tangent_state, s.tangent_state);
+  auto error_loading = [&](const std::string& file, Eigen::Index n) {
+    try {
+      load_branch_state(path(file), n);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_loading("a.state", 6).find("does not fit this scene (5 unknowns, expected 6)"),
+            std::string::npos);
+  const std::string bytes = read(path("a.state"));
+  write(path("cut.state"), bytes.substr(0, bytes.size() - 9));
+  EXPECT_NE(error_loading("cut.state", 5).find("is truncated"), std::string::npos);
+  std::string flipped = bytes;
+  flipped[40] = static_cast<char>(flipped[40] ^ 1);
+  write(path("flipped.state"), flipped);
+  EXPECT_NE(error_loading("flipped.state", 5).find("is damaged"), std::string::npos);
+  write(path("long.state"), bytes + "x");
+  EXPECT_NE(error_loading("long.state", 5).find("bytes after its end"), std::string::npos);
+  EXPECT_NE(error_loading("missing.state", 5).find("cannot read"), std::string::npos);
 }
 
 }  // namespace
