@@ -293,9 +293,9 @@ double BranchRecord::value(std::size_t row, const std::string& column) const {
   throw std::out_of_range(path(kBranchFile) + " has no column '" + column + "'");
 }
 
-std::string BranchRecord::save_state(const BranchSample& sample) {
+std::string BranchRecord::save_state(const BranchSample& sample, std::uint64_t model_fingerprint) {
   const std::string name = "states/" + saved_state_name(next_state_);
-  save_branch_state(path(name), sample);
+  save_branch_state(path(name), sample, model_fingerprint);
   ++next_state_;
   last_state_ = name;
   return name;

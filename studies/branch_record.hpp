@@ -14,6 +14,7 @@
 /// (studies/atomic_file.hpp), so none is ever seen half-written.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -87,9 +88,9 @@ class BranchRecord {
   // ---- states/ ----
   /// Index the next saved state gets (point_NNNNN.state).
   int next_state_index() const { return next_state_; }
-  /// Saves the sample as states/point_NNNNN.state (the next index) and returns that path
-  /// relative to the directory.
-  std::string save_state(const BranchSample& sample);
+  /// Saves the sample as states/point_NNNNN.state (the next index), with the fingerprint of
+  /// its model (save_branch_state; 0 = none), and returns that path relative to the directory.
+  std::string save_state(const BranchSample& sample, std::uint64_t model_fingerprint = 0);
   /// The last saved state (relative path), empty if there is none.
   const std::string& last_state() const { return last_state_; }
 

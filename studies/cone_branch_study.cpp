@@ -127,6 +127,7 @@ class ConeBranchRun {
   std::string start_note_;    ///< why a resumed study starts from flat after all
   BranchSample start_state_;  ///< the saved state a resumed study starts from
   std::string start_state_path_;
+  std::uint64_t model_fingerprint_ = 0;  ///< scene_model_fingerprint, stored with every state
   std::string branch_ = "flat";  ///< the branch the trace is on, for the recorded events
   bool skip_next_sample_ = false;
   double arclength_offset_ = 0.0;
@@ -147,6 +148,7 @@ ConeBranchRun::ConeBranchRun(const Scene& scene, const ConeBranchStudyOptions& o
   // Everything that can fail on bad input comes before the first file is written: the model
   // (e.g. a missing mesh.file), the recorded scene and the saved state to resume from.
   model_ = std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_));
+  model_fingerprint_ = scene_model_fingerprint(scene_);
   if (options_.start == ConeBranchStart::LastState) {
     if (!BranchRecord::exists(out_dir_)) {
       options_.start = ConeBranchStart::Flat;
@@ -170,7 +172,7 @@ ConeBranchRun::ConeBranchRun(const Scene& scene, const ConeBranchStudyOptions& o
         "continuation.direction = backward needs a start from a saved state (trace_disc "
         "--resume FILE): a study from the flat sheet grows forward");
   if (options_.start != ConeBranchStart::Flat)
-    start_state_ = load_branch_state(start_state_path_, model_->dimension());
+    start_state_ = load_branch_state(start_state_path_, model_->dimension(), model_fingerprint_);
 }
 
 /// The model's pins, family, subspace, step control, measures and events; the first lines of
@@ -260,7 +262,7 @@ void ConeBranchRun::on_sample(const BranchSample& s) {
   previous_phi_ = s.parameter;
   previous_defect_ = m.s4_defect;
   const int index = record_->next_state_index();
-  record_->save_state(s);
+  record_->save_state(s, model_fingerprint_);
   const int every = scene_.output.snapshot_every;
   if (every > 0 && samples_ % every == 0) snapshot(s.parameter, s.x, point_stem(index) + ".vtu");
   ++samples_;

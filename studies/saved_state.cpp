@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/content_hash.hpp"
 #include "studies/atomic_file.hpp"
 
 namespace growshell {
@@ -20,12 +21,6 @@ static_assert(std::endian::native == std::endian::little,
 
 constexpr std::string_view kMagic = "growshell-state 1\n";
 constexpr std::string_view kSuffixes[] = {".state", ".txt"};
-
-std::uint64_t fnv1a(std::string_view bytes) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
 
 template <class T>
 void put(std::string& out, const T& value) {
@@ -43,7 +38,8 @@ void put_vector(std::string& out, const Eigen::VectorXd& v) {
                            ")");
 }
 
-BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen::Index n) {
+BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen::Index n,
+                          std::uint64_t expected_fingerprint) {
   std::size_t at = kMagic.size();
   auto take = [&](void* to, std::size_t size) {
     if (bytes.size() < at + size) throw std::runtime_error("saved point " + path + " is truncated");
@@ -53,6 +49,8 @@ BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen
   std::int64_t size = 0;
   take(&size, sizeof size);
   if (size != n) does_not_fit(path, size, n);
+  std::uint64_t fingerprint = 0;
+  take(&fingerprint, sizeof fingerprint);
   BranchSample s;
   take(&s.parameter, sizeof(double));
   take(&s.tangent_parameter, sizeof(double));
@@ -60,7 +58,7 @@ BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen
   s.tangent_state.resize(n);
   take(s.x.data(), static_cast<std::size_t>(n) * sizeof(double));
   take(s.tangent_state.data(), static_cast<std::size_t>(n) * sizeof(double));
-  const std::uint64_t expected = fnv1a(bytes.substr(0, at));
+  const std::uint64_t expected = fnv1a_64(bytes.substr(0, at));
   std::uint64_t stored = 0;
   take(&stored, sizeof stored);
   if (at != bytes.size())
@@ -68,6 +66,10 @@ BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen
                              std::to_string(bytes.size() - at) + " bytes after its end");
   if (stored != expected)
     throw std::runtime_error("saved point " + path + " is damaged (its hash does not match)");
+  if (fingerprint != 0 && expected_fingerprint != 0 && fingerprint != expected_fingerprint)
+    throw std::runtime_error("saved point " + path +
+                             " belongs to another model: its scene differs from this one in "
+                             "geometry, thickness, material, growth or mesh");
   return s;
 }
 
@@ -110,7 +112,8 @@ int saved_state_index(const std::string& file_name) {
   return -1;
 }
 
-void save_branch_state(const std::string& path, const BranchSample& s) {
+void save_branch_state(const std::string& path, const BranchSample& s,
+                       std::uint64_t model_fingerprint) {
   if (s.tangent_state.size() != s.x.size())
     throw std::invalid_argument("save_branch_state: the tangent has " +
                                 std::to_string(s.tangent_state.size()) + " entries, the state " +
@@ -118,20 +121,22 @@ void save_branch_state(const std::string& path, const BranchSample& s) {
   std::string out(kMagic);
   out.reserve(kMagic.size() + 16 * static_cast<std::size_t>(s.x.size()) + 32);
   put(out, static_cast<std::int64_t>(s.x.size()));
+  put(out, model_fingerprint);
   put(out, s.parameter);
   put(out, s.tangent_parameter);
   put_vector(out, s.x);
   put_vector(out, s.tangent_state);
-  put(out, fnv1a(out));
+  put(out, fnv1a_64(out));
   write_file_atomically(path, out);
 }
 
-BranchSample load_branch_state(const std::string& path, Eigen::Index n) {
+BranchSample load_branch_state(const std::string& path, Eigen::Index n,
+                               std::uint64_t expected_fingerprint) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read saved point " + path);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (std::string_view(bytes).substr(0, kMagic.size()) == kMagic)
-    return parse_binary(path, bytes, n);
+    return parse_binary(path, bytes, n, expected_fingerprint);
   return parse_text(path, bytes, n);
 }
 

@@ -5,12 +5,14 @@
 /// post-processed exactly.
 ///
 /// Format (`.state`): the line "growshell-state 1\n", then little-endian binary: int64 n (the
-/// number of unknowns), float64 phi_e, float64 dphi_e/ds, float64 x[n], float64 dx/ds[n], and
-/// uint64 the FNV-1a hash of every byte before it, so a truncated or damaged file is named as
-/// such. 16 n + 50 bytes: 2.7 times smaller than the text format of earlier versions
-/// (`.txt`: one number per line, 17 significant digits), which is still read.
+/// number of unknowns), uint64 the model fingerprint (scene_model_fingerprint, 0 = none),
+/// float64 phi_e, float64 dphi_e/ds, float64 x[n], float64 dx/ds[n], and uint64 the FNV-1a hash
+/// of every byte before it, so a truncated or damaged file is named as such. 16 n + 58 bytes:
+/// 2.7 times smaller than the text format of earlier versions (`.txt`: one number per line,
+/// 17 significant digits, no fingerprint), which is still read.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,14 +29,18 @@ std::string saved_state_name(int index);
 int saved_state_index(const std::string& file_name);
 
 /// Writes the sample's parameter, tangent and state to `path` atomically (write_file_atomically)
-/// in the binary format. Throws std::runtime_error naming the path if it cannot be written.
-void save_branch_state(const std::string& path, const BranchSample& sample);
+/// in the binary format, with the fingerprint of the model it belongs to (0 = none). Throws
+/// std::runtime_error naming the path if it cannot be written.
+void save_branch_state(const std::string& path, const BranchSample& sample,
+                       std::uint64_t model_fingerprint = 0);
 
 /// Reads a saved state of a model with n unknowns (parameter, tangent, x; arclength, counts
 /// and iterations stay 0), in either format (told by its first line, not its name). Throws
-/// std::runtime_error naming the file if it is missing, of another size, truncated or, in the
-/// binary format, damaged (hash mismatch).
-BranchSample load_branch_state(const std::string& path, Eigen::Index n);
+/// std::runtime_error naming the file if it is missing, of another size, truncated, damaged
+/// (hash mismatch), or saved for another model: when both the file's fingerprint and
+/// `expected_fingerprint` are non-zero and differ (a text state has none).
+BranchSample load_branch_state(const std::string& path, Eigen::Index n,
+                               std::uint64_t expected_fingerprint = 0);
 
 /// The saved states of a run directory (RUN_DIR/states/point_NNNNN.state or .txt), in trace
 /// order (by index); other files there (e.g. a temporary left by a killed run) are skipped.

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/content_hash.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/ghost_layer.hpp"
 #include "libshell/mesh/gmsh_disc_mesh.hpp"
@@ -538,6 +539,17 @@ std::string scene_to_json(const Scene& scene) {
       document[key.substr(0, dot)][key.substr(dot + 1)] = field.get(scene);
   }
   return document.dump(2) + "\n";
+}
+
+std::uint64_t scene_model_fingerprint(const Scene& scene) {
+  validate_scene(scene);
+  const Json document = Json::parse(scene_to_json(scene));
+  Json model = Json::object();
+  for (const char* section : {"geometry", "thickness", "material", "growth", "mesh"})
+    model[section] = document.at(section);
+  // The floor that "auto" resolves to, so that a change of that rule changes the fingerprint.
+  model["mesh"]["min_spacing"] = resolved_min_spacing(scene);
+  return fnv1a_64(model.dump());
 }
 
 std::vector<std::string> scene_keys() {

@@ -254,6 +254,12 @@ Scene read_scene(const std::string& path);
 /// key's default). Error messages start with `origin` (e.g. "scene file 'a.json'").
 Scene parse_scene(const std::string& text, const std::string& origin);
 
+/// Fingerprint (FNV-1a, core/content_hash.hpp) of what defines the model and its unknowns:
+/// the geometry, thickness, material, growth and mesh keys, with mesh.min_spacing resolved.
+/// Two scenes with the same fingerprint build the same ShellModel; a saved state carries it
+/// (studies/saved_state.hpp). Validates the scene first (throws as validate_scene).
+std::uint64_t scene_model_fingerprint(const Scene& scene);
+
 /// Sets one dotted key (as in the file, e.g. "thickness", "geometry.inner_radius",
 /// "continuation.direction") from its command-line text. Numbers, booleans and arrays are
 /// written as in JSON ("0.01", "true", "[0.1, 0]"); string-valued keys take the text as is;

@@ -312,6 +312,31 @@ TEST_F(SceneFileTest, PartialFileOverridesOnlyWhatItSets) {
   EXPECT_EQ(resolved_min_spacing(s), 0.00125);
 }
 
+TEST(Scene, ModelFingerprintChangesWithTheModelOnly) {
+  const Scene base = default_scene();
+  const std::uint64_t f = scene_model_fingerprint(base);
+  auto with = [&](auto change) {
+    Scene s = base;
+    change(s);
+    return scene_model_fingerprint(s);
+  };
+  // What the trace does, where it writes and what it studies leave the model alone.
+  EXPECT_EQ(with([](Scene& s) { s.continuation.phi_max = 7.6; }), f);
+  EXPECT_EQ(with([](Scene& s) { s.output.directory = "elsewhere"; }), f);
+  EXPECT_EQ(with([](Scene& s) { s.study.through_contact = true; }), f);
+  EXPECT_EQ(with([](Scene& s) { s.physics.contact = true; }), f);
+  // Each model section changes it, and so does the floor that "auto" resolves to.
+  EXPECT_NE(with([](Scene& s) { s.thickness = ConstantThickness{0.03}; }), f);
+  EXPECT_NE(with([](Scene& s) { s.material.poisson_ratio = 0.25; }), f);
+  EXPECT_NE(with([](Scene& s) { s.material.stretching_law = StretchingLaw::kNeoHookean; }), f);
+  EXPECT_NE(with([](Scene& s) { s.growth.smoothing_radius = 0.01; }), f);
+  EXPECT_NE(with([](Scene& s) { s.mesh.size_slope = 0.07; }), f);
+  EXPECT_NE(with([](Scene& s) { s.geometry.radius = 2.0; }), f);
+  Scene explicit_floor = base;
+  explicit_floor.mesh.min_spacing = resolved_min_spacing(base);
+  EXPECT_EQ(scene_model_fingerprint(explicit_floor), f);
+}
+
 TEST(Scene, ExampleFileIsTheDefaultSceneInFull) {
   const fs::path example = repo_root() / "examples" / "scenes" / "disc_h002.json";
   std::ifstream in(example);

@@ -183,9 +183,10 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   s.x = Eigen::VectorXd::LinSpaced(5, -1e-300, 7.0);
   s.x(2) = std::numeric_limits<double>::denorm_min();
   s.tangent_state = Eigen::VectorXd::Constant(5, std::sqrt(2.0));
-  save_branch_state(path("a.state"), s);
-  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 16u + 2u * 5u * 8u + 8u);
-  const BranchSample r = load_branch_state(path("a.state"), 5);
+  save_branch_state(path("a.state"), s, 42);
+  // header line, n, fingerprint, phi_e and its tangent, x and dx/ds, hash
+  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 8u + 16u + 2u * 5u * 8u + 8u);
+  const BranchSample r = load_branch_state(path("a.state"), 5, 42);
   EXPECT_EQ(r.parameter, s.parameter);
   EXPECT_EQ(r.tangent_parameter, s.tangent_parameter);
   EXPECT_EQ(r.x, s.x);  // exact, not to a tolerance
@@ -210,6 +211,16 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   write(path("long.state"), bytes + "x");
   EXPECT_NE(error_loading("long.state", 5).find("bytes after its end"), std::string::npos);
   EXPECT_NE(error_loading("missing.state", 5).find("cannot read"), std::string::npos);
+  // The model fingerprint: another model's state is refused; 0 on either side checks nothing.
+  EXPECT_THROW(load_branch_state(path("a.state"), 5, 43), std::runtime_error);
+  try {
+    load_branch_state(path("a.state"), 5, 43);
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("belongs to another model"), std::string::npos);
+  }
+  EXPECT_NO_THROW(load_branch_state(path("a.state"), 5, 0));
+  save_branch_state(path("b.state"), s);
+  EXPECT_NO_THROW(load_branch_state(path("b.state"), 5, 43));
 }
 
 }  // namespace
