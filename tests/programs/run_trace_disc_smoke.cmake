@@ -77,6 +77,18 @@ list(LENGTH rows_after m)
 if(NOT m GREATER n)
   message(FATAL_ERROR "resume appended no rows")
 endif()
+# A state resumed under another material (the same unknowns) is refused by its fingerprint,
+# and the refused run writes nothing.
+file(WRITE "${OUT}/other_material.json" "{\"material\": {\"poisson_ratio\": 0.25}}")
+execute_process(COMMAND "${PROGRAM}" "${OUT}/other_material.json" --h 0.04 --size-slope 0.25
+                        --phi-max 0.4 --out "${OUT}/other" --resume "${OUT}/states/point_00005.state"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "belongs to another model")
+  message(FATAL_ERROR "a state of another material was resumed (${rc}):\n${log}\n${err}")
+endif()
+if(EXISTS "${OUT}/other/branch.csv")
+  message(FATAL_ERROR "the refused resume wrote ${OUT}/other/branch.csv")
+endif()
 # The same cone traced among the states with both mirrors: every row on the two-fold cone,
 # up to phi-max.
 execute_process(COMMAND "${PROGRAM}" --h 0.04 --mesh lattice --rings 6 --phi-max 0.3 --symmetric-subspace 1
