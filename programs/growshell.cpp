@@ -21,6 +21,9 @@
 #include "studies/parameter_sweep.hpp"
 #include "studies/scene_study.hpp"
 #include "studies/study_directory.hpp"
+#ifdef GROWSHELL_WITH_MPI
+#include "sweep_on_ranks.hpp"
+#endif
 
 extern char** environ;
 
@@ -250,6 +253,9 @@ int run_study(const RunCommand& c) {
 
 int run_sweep(const RunCommand& c) {
   const Scene base = command_scene(c);
+#ifdef GROWSHELL_WITH_MPI
+  if (launched_by_mpi_launcher()) return run_sweep_on_ranks(base, c.parameters, c.out, c.existing, say);
+#endif
   say("# growshell sweep: study " + study_kind_name(base.study.kind) + ", scene " +
       c.scene_file + ", " + std::to_string(sweep_points(c.parameters).size()) + " points, output " +
       c.out);

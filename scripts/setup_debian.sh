@@ -17,6 +17,7 @@ packages=(
   gmsh libgmsh-dev     # well-kept unstructured mesh generator: the second disc mesh family, sharing no structure with the ring mesh
   libgtest-dev         # unit tests
   libbenchmark-dev     # micro-benchmarks
+  libopenmpi-dev openmpi-bin  # mpirun -n K growshell sweep: the sweep's points spread over MPI ranks (programs/ only)
   python3-matplotlib   # figures: scripts/plot_study.py (growshell run draws DIR/eb_hat.png), render_surface.py
   python3              # the layering test (tests/layering/check_layering.py)
 )

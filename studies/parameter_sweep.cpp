@@ -214,10 +214,16 @@ void open_sweep_directory(const std::string& dir, const Scene& base,
                                       plan_file + " (" + recorded["parameters"].dump() + ")");
         // Read through the scene reader, so that a key added since the plan was written
         // compares as its default (the value the recorded sweep ran with).
-        const Json recorded_scene = Json::parse(scene_to_json(
+        // output.directory is where the sweep was started from, spelled as it was given
+        // ("out/s" or its absolute path): it does not define the sweep (each point has its own
+        // directory below DIR), so it is not compared.
+        Json recorded_scene = Json::parse(scene_to_json(
             parse_scene(recorded["base_scene"].dump(), plan_file + ", base_scene")));
-        if (recorded_scene != plan["base_scene"]) {
-          const Json diff = Json::diff(recorded_scene, plan["base_scene"]);
+        Json wanted_scene = plan["base_scene"];
+        recorded_scene["output"].erase("directory");
+        wanted_scene["output"].erase("directory");
+        if (recorded_scene != wanted_scene) {
+          const Json diff = Json::diff(recorded_scene, wanted_scene);
           throw std::invalid_argument("--resume: the base scene differs from that of " +
                                       plan_file + " at " +
                                       diff.at(0).value("path", std::string("?")));

@@ -85,6 +85,10 @@ TEST_F(ParameterSweepFiles, OpeningRefusesBadValuesUsedDirectoriesAndOtherPlans)
   EXPECT_NE(error_of([&] { open_sweep_directory(dir, default_scene(), other, ExistingOutput::Resume); })
                 .find("parameters differ"),
             std::string::npos);
+  // Where the sweep was started from (its base's output.directory) is not part of the plan.
+  Scene elsewhere = default_scene();
+  elsewhere.output.directory = "/somewhere/else";
+  EXPECT_NO_THROW(open_sweep_directory(dir, elsewhere, good, ExistingOutput::Resume));
   Scene changed = default_scene();
   changed.continuation.phi_max = 5.0;
   EXPECT_NE(error_of([&] { open_sweep_directory(dir, changed, good, ExistingOutput::Resume); })
