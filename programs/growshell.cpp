@@ -88,7 +88,8 @@ Exit status: 0 the study completed, 3 its trace ended early (results.json "end" 
 const char* kSweepUsage = R"(usage: growshell sweep SCENE.json --out DIR --param KEY=V1,V2,... [--param ...]
                        [--set KEY=VALUE ...] [--resume | --overwrite]
 Runs the study that SCENE.json names at every point of the cartesian product of the --param
-values (the first --param varying slowest), one process, point after point.
+values (the first --param varying slowest): on one process point after point, or under
+an MPI launcher (mpirun -n K growshell sweep ...) on K ranks, each taking the next point.
   --out DIR    the sweep's directory (required)
   --param KEY=V1,V2,...  a scene key and its values (commas inside [...] belong to a value)
   --set KEY=VALUE  sets a scene key of every point (as for growshell run)
@@ -100,7 +101,9 @@ Writes DIR/sweep_plan.json, DIR/point_NNN/ (each a study directory, as growshell
 it, without the figure), and after every point DIR/sweep.json
 ({"parameters": [...], "points": [{"params", "status", "reason", "results"}]}, results being
 the point's results.json) and DIR/sweep.csv (a row per point: its parameters, status and the
-scalar results). A point that fails is reported with its reason and the others go on. Every
+scalar results), and at the end the figure DIR/sweep.png (scripts/plot_sweep.py: the key
+results against the first numeric parameter). Under MPI, sweep.json is written at the start
+and at the end. A point that fails is reported with its reason and the others go on. Every
 point's scene is checked before anything is written.
 Exit status: 0 every point completed, 3 some point ended early or failed, 2 bad input.
 )";
@@ -186,23 +189,27 @@ int run_process(const std::vector<std::string>& args, bool quiet) {
   return WEXITSTATUS(status);
 }
 
-/// plot_study.py: the installed copy (../share/growshell/ from this program's bin/), else the
-/// source tree's; empty if neither exists.
-std::string plot_script() {
+/// The figure script `name` (plot_study.py, plot_sweep.py): the installed copy
+/// (../share/growshell/ from this program's bin/), else the source tree's; empty if neither
+/// exists.
+std::string plot_script(const std::string& name) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path() / "share/growshell/plot_study.py";
+    const fs::path installed = exe.parent_path().parent_path() / "share/growshell" / name;
     if (fs::is_regular_file(installed, ec)) return installed.string();
   }
-#ifdef GROWSHELL_SOURCE_PLOT_SCRIPT
-  if (fs::is_regular_file(GROWSHELL_SOURCE_PLOT_SCRIPT, ec)) return GROWSHELL_SOURCE_PLOT_SCRIPT;
+#ifdef GROWSHELL_SOURCE_SCRIPTS_DIR
+  const fs::path source = fs::path(GROWSHELL_SOURCE_SCRIPTS_DIR) / name;
+  if (fs::is_regular_file(source, ec)) return source.string();
 #endif
   return "";
 }
 
-/// DIR/eb_hat.png by plot_study.py, or a note why not; never fails the study.
-void draw_figure(const std::string& dir) {
+/// DIR/FIGURE drawn by the script `script_name` (called with DIR), or a note why not; never
+/// fails the study or the sweep.
+void draw_figure(const std::string& script_name, const std::string& dir,
+                 const std::string& figure) {
   const char* chosen = std::getenv("GROWSHELL_PYTHON");
   const std::string python = chosen && *chosen ? chosen : "/usr/bin/python3";
   if (::access(python.c_str(), X_OK) != 0) {
@@ -214,9 +221,9 @@ void draw_figure(const std::string& dir) {
         " cannot import matplotlib (on Debian: apt-get install python3-matplotlib)");
     return;
   }
-  const std::string script = plot_script();
+  const std::string script = plot_script(script_name);
   if (script.empty()) {
-    say("# figure skipped: plot_study.py is neither installed nor in the source tree");
+    say("# figure skipped: " + script_name + " is neither installed nor in the source tree");
     return;
   }
   const int status = run_process({python, script, dir}, false);
@@ -224,7 +231,7 @@ void draw_figure(const std::string& dir) {
     say("# figure failed: " + script + " exited with status " + std::to_string(status) +
         "; the study's results stand");
   else
-    say("# wrote " + dir + "/eb_hat.png");
+    say("# wrote " + dir + "/" + figure);
 }
 
 /// The scene file with the --set overrides applied.
@@ -243,7 +250,7 @@ int run_study(const RunCommand& c) {
   say("# growshell run: study " + study_kind_name(scene.study.kind) + ", scene " + c.scene_file +
       ", output " + dir);
   const SceneStudyOutcome outcome = run_scene_study(scene, c.existing, say);
-  draw_figure(dir);
+  draw_figure("plot_study.py", dir, "eb_hat.png");
   if (!outcome.completed) {
     std::fprintf(stderr, "growshell: the study ended early: %s\n", outcome.end.c_str());
     return 3;
@@ -254,7 +261,13 @@ int run_study(const RunCommand& c) {
 int run_sweep(const RunCommand& c) {
   const Scene base = command_scene(c);
 #ifdef GROWSHELL_WITH_MPI
-  if (launched_by_mpi_launcher()) return run_sweep_on_ranks(base, c.parameters, c.out, c.existing, say);
+  if (launched_by_mpi_launcher()) {
+    const RankedSweepOutcome outcome =
+        run_sweep_on_ranks(base, c.parameters, c.out, c.existing, say);
+    // After MPI_Finalize: the figure's process is not started from inside MPI.
+    if (outcome.wrote_summary) draw_figure("plot_sweep.py", c.out, "sweep.png");
+    return outcome.exit_code;
+  }
 #endif
   say("# growshell sweep: study " + study_kind_name(base.study.kind) + ", scene " +
       c.scene_file + ", " + std::to_string(sweep_points(c.parameters).size()) + " points, output " +
@@ -265,6 +278,7 @@ int run_sweep(const RunCommand& c) {
     completed += r.status == SweepPointResult::Status::Completed;
   say("# wrote " + c.out + "/sweep.json and sweep.csv: " + std::to_string(completed) + " of " +
       std::to_string(sweep.points.size()) + " points completed");
+  draw_figure("plot_sweep.py", c.out, "sweep.png");
   if (!sweep.all_completed()) {
     std::fprintf(stderr, "growshell: %zu of %zu sweep points did not complete (sweep.json says why)\n",
                  sweep.points.size() - static_cast<std::size_t>(completed), sweep.points.size());

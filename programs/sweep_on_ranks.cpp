@@ -107,7 +107,7 @@ std::string gather_text(const std::string& mine) {
   return all;
 }
 
-int sweep(const Scene& base, const std::vector<SweepParameter>& parameters, const std::string& dir,
+RankedSweepOutcome sweep(const Scene& base, const std::vector<SweepParameter>& parameters, const std::string& dir,
           ExistingOutput existing, const std::function<void(const std::string&)>& say) {
   const int rank = world_rank();
   int ranks = 1;
@@ -128,7 +128,7 @@ int sweep(const Scene& base, const std::vector<SweepParameter>& parameters, cons
   refusal = broadcast_text(refusal);
   if (!refusal.empty()) {
     if (rank == 0) std::fprintf(stderr, "growshell: error: %s\n", refusal.c_str());
-    return 2;
+    return {2, false};
   }
   if (rank == 0)
     say("# growshell sweep: study " + study_kind_name(base.study.kind) + ", " +
@@ -147,7 +147,7 @@ int sweep(const Scene& base, const std::vector<SweepParameter>& parameters, cons
     encode(mine, point.index, r);
   }
   const std::string all = gather_text(mine.str());
-  if (rank != 0) return 0;
+  if (rank != 0) return {0, false};
   std::vector<std::optional<SweepPointResult>> known(points.size());
   decode(all, known);
   write_sweep_summary(dir, parameters, points, known);
@@ -155,10 +155,10 @@ int sweep(const Scene& base, const std::vector<SweepParameter>& parameters, cons
   for (const auto& r : known) completed += r && r->status == SweepPointResult::Status::Completed;
   say("# wrote " + dir + "/sweep.json and sweep.csv: " + std::to_string(completed) + " of " +
       std::to_string(points.size()) + " points completed");
-  if (completed == points.size()) return 0;
+  if (completed == points.size()) return {0, true};
   std::fprintf(stderr, "growshell: %zu of %zu sweep points did not complete (sweep.json says why)\n",
                points.size() - completed, points.size());
-  return 3;
+  return {3, true};
 }
 
 }  // namespace
@@ -169,11 +169,12 @@ bool launched_by_mpi_launcher() {
   return false;
 }
 
-int run_sweep_on_ranks(const Scene& base, const std::vector<SweepParameter>& parameters,
-                       const std::string& dir, ExistingOutput existing,
-                       const std::function<void(const std::string&)>& say) {
+RankedSweepOutcome run_sweep_on_ranks(const Scene& base,
+                                      const std::vector<SweepParameter>& parameters,
+                                      const std::string& dir, ExistingOutput existing,
+                                      const std::function<void(const std::string&)>& say) {
   MPI_Init(nullptr, nullptr);
-  int code = 2;
+  RankedSweepOutcome code;
   try {
     code = sweep(base, parameters, dir, existing, say);
   } catch (const std::exception& e) {

@@ -22,10 +22,15 @@ bool launched_by_mpi_launcher();
 /// (open_sweep_directory) before any rank runs a point; a refusal is reported by rank 0 and
 /// makes every rank return 2. Each rank then runs points in the order it draws them
 /// (run_sweep_point; its log lines behind "[rank R]"), and rank 0 writes the summaries, at the
-/// start (every point pending) and at the end. Returns 0 when every point completed, 3 when
-/// some did not (rank 0; the others return 0), 2 for refused input. Initialises and finalises
-/// MPI.
-int run_sweep_on_ranks(const Scene& base, const std::vector<SweepParameter>& parameters,
+/// start (every point pending) and at the end. Initialises and finalises MPI.
+struct RankedSweepOutcome {
+  /// 0 when every point completed, 3 when some did not (rank 0; the others return 0), 2 for
+  /// refused input.
+  int exit_code = 2;
+  /// This process is rank 0 and wrote the final summaries (so it may draw the figure).
+  bool wrote_summary = false;
+};
+RankedSweepOutcome run_sweep_on_ranks(const Scene& base, const std::vector<SweepParameter>& parameters,
                        const std::string& dir, ExistingOutput existing,
                        const std::function<void(const std::string&)>& say);
 

@@ -35,6 +35,16 @@ if(phi_branch_0 LESS 0.0166 OR phi_branch_0 GREATER 0.0173 OR phi_branch_1 LESS 
    OR phi_branch_1 GREATER 0.0271)
   message(FATAL_ERROR "phi_branch ${phi_branch_0}, ${phi_branch_1}: not near c2 h^2")
 endif()
+# The figure, when /usr/bin/python3 has matplotlib; otherwise a note why not.
+execute_process(COMMAND /usr/bin/python3 -c "import matplotlib" RESULT_VARIABLE no_matplotlib
+                OUTPUT_QUIET ERROR_QUIET)
+if(no_matplotlib EQUAL 0)
+  if(NOT EXISTS "${sweep}/sweep.png" OR NOT log MATCHES "wrote [^\n]*/sweep.png")
+    message(FATAL_ERROR "matplotlib is importable but growshell sweep drew no sweep.png:\n${log}")
+  endif()
+elseif(NOT log MATCHES "figure skipped: [^\n]*matplotlib")
+  message(FATAL_ERROR "no matplotlib, and growshell sweep did not say the figure was skipped:\n${log}")
+endif()
 file(STRINGS "${sweep}/sweep.csv" csv)
 list(LENGTH csv rows)
 list(GET csv 0 header)
