@@ -12,6 +12,9 @@ file(WRITE "${OUT}/small.json"
 # fewer cores.
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
 set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
+# Containers often forbid the cross-memory attach that OpenMPI's shared-memory transport uses
+# for large messages; copying through the shared segment works everywhere.
+set(ENV{OMPI_MCA_btl_vader_single_copy_mechanism} none)
 set(points thickness=0.04,0.05,0.045)
 execute_process(COMMAND "${MPIEXEC}" -n 2 --oversubscribe "${PROGRAM}" sweep "${OUT}/small.json"
                         --out "${OUT}/mpi" --param ${points}
