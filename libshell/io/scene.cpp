@@ -496,7 +496,9 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   Json document;
   try {
     document = Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double (e.g. 1e400): found by
+    // fuzz/fuzz_scene_parser.
     fail(where + "malformed JSON: " + e.what());
   }
   if (!document.is_object()) fail(where + "the top level must be a JSON object (got " + document.type_name() + ")");

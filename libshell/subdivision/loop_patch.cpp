@@ -74,7 +74,10 @@ std::pair<std::size_t, int> find_face(const LocalLoopMesh& mesh, const std::arra
 // One subdivision step, keeping only the faces around the sub-triangle that holds the point.
 SubPatch refine_towards_point(const SubPatch& coarse) {
   const LocalSubdivisionStep step = subdivide_local_mesh(coarse.mesh);
-  const auto [f, r] = find_face(coarse.mesh, coarse.triangle);
+  // Named copies, not a structured binding: clang before 16 cannot capture bindings.
+  const std::pair<std::size_t, int> found = find_face(coarse.mesh, coarse.triangle);
+  const std::size_t f = found.first;
+  const int r = found.second;
   const auto edge = [&](int k) { return step.edge_point[f][static_cast<std::size_t>((r + k) % 3)]; };
   const int a = coarse.triangle[0], b = coarse.triangle[1], c = coarse.triangle[2];
   const int ab = edge(0), bc = edge(1), ca = edge(2);

@@ -312,6 +312,17 @@ TEST_F(SceneFileTest, PartialFileOverridesOnlyWhatItSets) {
   EXPECT_EQ(resolved_min_spacing(s), 0.00125);
 }
 
+TEST(Scene, ANumberBeyondDoubleIsMalformedJsonNotACrash) {
+  // Found by fuzz/fuzz_scene_parser: the JSON parser reports it as out_of_range, not as a
+  // parse error.
+  try {
+    parse_scene("{\"thickness\": 1e400}", "text");
+    FAIL() << "a number beyond double was read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("text: malformed JSON"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Scene, ModelFingerprintChangesWithTheModelOnly) {
   const Scene base = default_scene();
   const std::uint64_t f = scene_model_fingerprint(base);
