@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -23,6 +22,7 @@
 #include "libshell/analysis/elastic_stretches.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/io/scene.hpp"
+#include "studies/atomic_file.hpp"
 
 namespace growshell {
 namespace {
@@ -71,9 +71,7 @@ int run(int argc, char** argv) {
     ++rows;
   }
   const std::string path = dir + "/apex_strain.csv";
-  const std::string partial = path + ".partial";
-  std::ofstream(partial) << csv.str();
-  std::filesystem::rename(partial, path);
+  write_file_atomically(path, csv.str());
   std::printf("# wrote %s (%d states)\n", path.c_str(), rows);
   return 0;
 }

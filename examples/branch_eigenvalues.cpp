@@ -11,13 +11,12 @@
 // gives the reference radius where its displacement is largest and, on a mesh with the mirrors
 // x -> -x and y -> -y, its parity under each (the symmetry class: both +1 for the B2 and A
 // modes of the two-fold cone, both -1 for B1, mixed for the E pair). Writes DIR/eigenvalues.csv
-// (written whole, then renamed into place).
+// (atomically, studies/atomic_file.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <optional>
@@ -32,6 +31,7 @@
 #include "libshell/mesh/vertex_symmetry.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
+#include "studies/atomic_file.hpp"
 
 namespace {
 
@@ -145,9 +145,7 @@ int run(int argc, char** argv) {
     ++rows;
   }
   const std::string path = dir + "/eigenvalues.csv";
-  const std::string partial = path + ".partial";
-  std::ofstream(partial) << csv.str();
-  std::filesystem::rename(partial, path);
+  write_file_atomically(path, csv.str());
   std::printf("# wrote %s (%d states)\n", path.c_str(), rows);
   return 0;
 }
