@@ -1,6 +1,7 @@
 #include "libshell/energy/circumferential_growth.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <numbers>
 
 namespace growshell {
@@ -34,6 +35,12 @@ double circumferential_stretch(double excess_angle) {
 double excess_angle_weight(const CircumferentialGrowth& growth, double r) {
   const double eps = growth.smoothing_radius;
   if (eps == 0.0) return 1.0;
+  switch (growth.smoothing_profile) {
+    case GrowthSmoothingProfile::Gaussian:
+      return -std::expm1(-(r / eps) * (r / eps));
+    case GrowthSmoothingProfile::Rational:
+      break;
+  }
   return r * r / (r * r + eps * eps);
 }
 

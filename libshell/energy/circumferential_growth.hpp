@@ -13,19 +13,29 @@ namespace growshell {
 /// X - center onto the tangent plane.
 ///
 /// With smoothing_radius epsilon > 0 the excess angle rises from 0 at the centre to phi_e
-/// over a disc of radius about epsilon: lambda(r) = 1 + w(r) phi_e / (2 pi) with
-/// w(r) = r^2 / (r^2 + epsilon^2). The grown metric then has no point singularity: its
+/// over a disc of radius about epsilon: lambda(r) = 1 + w(r) phi_e / (2 pi), with the weight
+/// w(r) of the smoothing profile. The grown metric then has no point singularity: its
 /// Gaussian curvature -phi_e is spread over r ~ epsilon instead of sitting at the centre.
+enum class GrowthSmoothingProfile {
+  /// w = r^2 / (r^2 + epsilon^2): half the excess angle at r = epsilon, a deficit
+  /// epsilon^2 / r^2 far away (the growth differs from the singular one everywhere).
+  Rational,
+  /// w = 1 - exp(-r^2 / epsilon^2): 63 % at r = epsilon, equal to the singular growth to
+  /// 1e-4 beyond r = 3 epsilon (the growth is changed only inside the core).
+  Gaussian,
+};
+
 struct CircumferentialGrowth {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double smoothing_radius = 0.0;  ///< epsilon (m), >= 0; 0 = growth singular at the centre
+  GrowthSmoothingProfile smoothing_profile = GrowthSmoothingProfile::Rational;
 };
 
 /// Circumferential stretch lambda = 1 + phi_e / (2 pi) (dimensionless).
 double circumferential_stretch(double excess_angle);
 
-/// Weight w(r) = r^2 / (r^2 + epsilon^2) of the excess angle at distance r (m) from the
-/// centre; 1 for epsilon = 0.
+/// Weight w(r) of the excess angle at distance r (m) from the centre, of the growth's
+/// smoothing profile; 1 for epsilon = 0.
 double excess_angle_weight(const CircumferentialGrowth& growth, double r);
 
 /// Target (grown) metric abar_ab = (G A_a) . (G A_b) at reference point X with reference

@@ -59,6 +59,8 @@ const NameTable<StretchingLaw> kStretchingLawNames = {
     {StretchingLaw::kNeoHookean, "neo_hookean"},
     {StretchingLaw::kSaintVenantKirchhoff, "saint_venant_kirchhoff"}};
 const NameTable<GrowthLaw> kLawNames = {{GrowthLaw::Circumferential, "circumferential"}};
+const NameTable<GrowthSmoothingProfile> kSmoothingProfileNames = {
+    {GrowthSmoothingProfile::Rational, "rational"}, {GrowthSmoothingProfile::Gaussian, "gaussian"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
 const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"}};
@@ -217,6 +219,9 @@ const Field kFields[] = {
   {"growth.smoothing_radius",
    [](Scene& s, const Json& v, const std::string& k) { s.growth.smoothing_radius = read_number(v, k); },
    [](const Scene& s) { return Json(s.growth.smoothing_radius); }},
+  {"growth.smoothing_profile",
+   [](Scene& s, const Json& v, const std::string& k) { s.growth.smoothing_profile = read_enum(v, k, kSmoothingProfileNames); },
+   [](const Scene& s) { return Json(enum_name(kSmoothingProfileNames, s.growth.smoothing_profile)); }, true},
   {"mesh.family",
    [](Scene& s, const Json& v, const std::string& k) { s.mesh.family = read_enum(v, k, kMeshFamilyNames); },
    [](const Scene& s) { return Json(enum_name(kMeshFamilyNames, s.mesh.family)); }, true},
@@ -551,6 +556,9 @@ std::uint64_t scene_model_fingerprint(const Scene& scene) {
     model[section] = document.at(section);
   // The floor that "auto" resolves to, so that a change of that rule changes the fingerprint.
   model["mesh"]["min_spacing"] = resolved_min_spacing(scene);
+  // The default profile is left out, so that states saved before the key existed still match.
+  if (scene.growth.smoothing_profile == GrowthSmoothingProfile::Rational)
+    model["growth"].erase("smoothing_profile");
   return fnv1a_64(model.dump());
 }
 
@@ -662,6 +670,7 @@ ShellModelSettings scene_model_settings(const Scene& scene) {
   settings.quadrature_degree = scene.mesh.quadrature_degree;
   settings.growth.center = Eigen::Vector3d(scene.growth.center.x(), scene.growth.center.y(), 0.0);
   settings.growth.smoothing_radius = scene.growth.smoothing_radius;
+  settings.growth.smoothing_profile = scene.growth.smoothing_profile;
   return settings;
 }
 

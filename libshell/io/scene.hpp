@@ -70,6 +70,8 @@ struct SceneGrowth {
   /// Radius epsilon (m) over which the excess angle rises from 0 at the centre to phi_e
   /// (CircumferentialGrowth::smoothing_radius); 0 = growth singular at the centre; >= 0.
   double smoothing_radius = 0.0;
+  /// How the excess angle rises within smoothing_radius (CircumferentialGrowth).
+  GrowthSmoothingProfile smoothing_profile = GrowthSmoothingProfile::Rational;
 };
 
 /// Which family of control meshes a scene is discretised with.

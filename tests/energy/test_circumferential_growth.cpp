@@ -40,11 +40,27 @@ TEST(CircumferentialGrowth, SmoothedGrowthRisesFromNoneAtTheCentreToFullFarAway)
   }
 }
 
+TEST(CircumferentialGrowth, GaussianProfileChangesTheGrowthOnlyInsideTheCore) {
+  CircumferentialGrowth growth;
+  growth.smoothing_radius = 0.01;
+  growth.smoothing_profile = GrowthSmoothingProfile::Gaussian;
+  EXPECT_EQ(excess_angle_weight(growth, 0.0), 0.0);
+  EXPECT_NEAR(excess_angle_weight(growth, 0.01), 1.0 - std::exp(-1.0), 1e-15);
+  EXPECT_NEAR(excess_angle_weight(growth, 1e-4), 1e-4 - 0.5e-8 + 1e-12 / 6, 1e-17);  // x - x^2/2 + x^3/6, x = (r/eps)^2
+  EXPECT_GT(excess_angle_weight(growth, 0.03), 1.0 - 1.3e-4);   // 1 - e^-9 at 3 eps
+  EXPECT_EQ(excess_angle_weight(growth, 0.1), 1.0);             // e^-100 below rounding
+  const double phi = 3.0;
+  const double w = 1.0 - std::exp(-4.0), lambda = 1 + w * phi / (2 * std::numbers::pi);
+  EXPECT_NEAR(target_metric(growth, {0.0, 0.02, 0}, kFlatTangents, phi)(0, 0), lambda * lambda,
+              1e-14);  // on the y axis the circumferential direction is -x
+}
+
 TEST(CircumferentialGrowth, ExcessAngleDerivativeMatchesCentralDifferences) {
   // Central differences with step 1e-5 on the quadratic lambda^2: exact up to rounding.
-  for (double eps : {0.0, 0.03}) {
+  for (double eps : {0.0, 0.03, -0.03}) {  // negative: the Gaussian profile with 0.03
     CircumferentialGrowth growth;
-    growth.smoothing_radius = eps;
+    growth.smoothing_radius = std::abs(eps);
+    if (eps < 0) growth.smoothing_profile = GrowthSmoothingProfile::Gaussian;
     Eigen::Matrix<double, 3, 2> A;
     A << 1.1, 0.2, -0.1, 0.9, 0.05, 0.1;  // a tilted, sheared reference
     const Eigen::Vector3d X(0.02, -0.03, 0.0);
