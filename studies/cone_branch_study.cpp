@@ -403,7 +403,15 @@ bool ConeBranchRun::trace_from_flat(BranchTrace& trace) {
   say(line_printf("# switching onto the %d-fold cone at phi_e = %.7f", scene_.continuation.mode,
                   entry.branch_point.parameter));
   branch_ = "cone";
-  trace = trace_cone(entry.start, entry.branch_point.parameter, entry.mode, 0.0);
+  const BranchPointDeparture departure =
+      leave_branch_point(entry, [&](const Eigen::VectorXd& start, const Eigen::VectorXd& mode) {
+        return trace_cone(start, entry.branch_point.parameter, mode, 0.0);
+      });
+  if (departure.attempts > 1)
+    say(line_printf("# the corrector converged onto the cone at a step off the branch point of "
+                    "%.3g, after %d larger ones failed",
+                    departure.switch_step, departure.attempts - 1));
+  trace = departure.trace;
   return true;
 }
 

@@ -28,10 +28,13 @@ ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& p
     return out;
   }
   out.buckling_parameter = entry.branch_point.parameter;
-  const BranchTrace cone = trace_branch_along(
-      family, entry.start, entry.branch_point.parameter, entry.mode, 0.0, fixed_dofs,
-      options.arclength, [&](const BranchSample& s) { out.samples.push_back(s); },
-      [&](const SpecialPoint& p) { out.special_points.push_back(p); });
+  const BranchTrace cone =
+      leave_branch_point(entry, [&](const Eigen::VectorXd& start, const Eigen::VectorXd& mode) {
+        return trace_branch_along(
+            family, start, entry.branch_point.parameter, mode, 0.0, fixed_dofs, options.arclength,
+            [&](const BranchSample& s) { out.samples.push_back(s); },
+            [&](const SpecialPoint& p) { out.special_points.push_back(p); });
+      }).trace;
   out.steps = cone.steps;
   // Past first contact the contact-free cone is not the symmetric branch any more: keep the
   // samples up to the last one free of contact.

@@ -83,8 +83,34 @@ ConeBranchEntry enter_cone_branch(ParametrizedObjective& family, const ShellMode
         " (" + out.flat.message + ")";
     return out;
   }
-  const double switch_step = 0.005 * std::min(1.0, entry.thickness / (0.005 * entry.radius));
-  out.start = out.branch_point.x + switch_step * out.mode;
+  out.switch_step = 0.005 * std::min(1.0, entry.thickness / (0.005 * entry.radius));
+  out.start = out.branch_point.x + out.switch_step * out.mode;
+  return out;
+}
+
+BranchPointDeparture leave_branch_point(
+    const ConeBranchEntry& entry,
+    const std::function<BranchTrace(const Eigen::VectorXd& start, const Eigen::VectorXd& mode)>&
+        trace,
+    int max_attempts) {
+  if (!entry.found)
+    throw std::invalid_argument("leave_branch_point: the entry has no branch point (" +
+                                entry.message + ")");
+  if (max_attempts < 1)
+    throw std::invalid_argument("leave_branch_point: max_attempts must be >= 1, not " +
+                                std::to_string(max_attempts));
+  BranchPointDeparture out;
+  TraceCost failed;
+  double step = entry.switch_step;
+  for (out.attempts = 1;; ++out.attempts, step *= 0.5) {
+    const Eigen::VectorXd start =
+        out.attempts == 1 ? entry.start : Eigen::VectorXd(entry.branch_point.x + step * entry.mode);
+    out.trace = trace(start, entry.mode);
+    out.switch_step = step;
+    if (out.trace.start_converged || out.attempts == max_attempts) break;
+    failed += out.trace.cost;
+  }
+  out.trace.cost += failed;
   return out;
 }
 

@@ -38,8 +38,9 @@ struct ConeBranchEntry {
   std::string message;        ///< why no entry was found
   SpecialPoint branch_point;  ///< on the flat branch
   Eigen::VectorXd mode;       ///< critical mode there (unit weighted norm, fixed dofs zero)
-  Eigen::VectorXd start;  ///< branch_point.x stepped off along the mode: hand to trace_branch_along
-                          ///< with `mode` as direction
+  double switch_step = 0.0;  ///< how far `start` is from the branch point along `mode`
+  Eigen::VectorXd start;  ///< branch_point.x stepped off along the mode by switch_step: hand to
+                          ///< leave_branch_point, or to trace_branch_along with `mode` as direction
   BranchTrace flat;       ///< the flat branch up to the branch point (its cost included)
 };
 
@@ -56,5 +57,28 @@ ConeBranchEntry enter_cone_branch(ParametrizedObjective& family, const ShellMode
                                   const std::vector<Eigen::Index>& fixed_dofs,
                                   const ArclengthOptions& cone_options,
                                   const std::function<void(const SpecialPoint&)>& on_special = {});
+
+/// How the cone was entered by leave_branch_point.
+struct BranchPointDeparture {
+  BranchTrace trace;         ///< of the last attempt, with the cost of all attempts
+  double switch_step = 0.0;  ///< the step off the branch point of the last attempt
+  int attempts = 0;          ///< 1 if the first start converged
+};
+
+/// Traces the cone out of `entry`'s branch point: calls trace(start, mode) with the start
+/// branch_point.x + s mode for s = entry.switch_step, and, while the corrector cannot converge
+/// at that start (trace.start_converged false), again with half the previous s, at most
+/// max_attempts times in all. The step off is a guess of the cone's amplitude: too large and
+/// Newton on the bordered system leaves its basin (measured on the Gmsh disc at h = 0.005, where
+/// the first step overshoots phi_e by 35 times the branch point's value and diverges), too
+/// small and the pair's near-neutral partner slows it; halving keeps the first guess wherever
+/// it works. `trace` is the caller's tracer (full space or a subspace), so its samples and
+/// events go where the caller sends them; a failed attempt emits none. Throws
+/// std::invalid_argument if entry.found is false or max_attempts < 1.
+BranchPointDeparture leave_branch_point(
+    const ConeBranchEntry& entry,
+    const std::function<BranchTrace(const Eigen::VectorXd& start, const Eigen::VectorXd& mode)>&
+        trace,
+    int max_attempts = 4);
 
 }  // namespace growshell

@@ -247,6 +247,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
       return out;
     }
     out.last = std::move(start);
+    out.start_converged = true;
     sample_done(out.last);
   }
   std::vector<double> event_values;

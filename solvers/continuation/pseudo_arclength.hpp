@@ -128,6 +128,7 @@ struct BranchTrace {
   BranchSample last;       ///< last converged sample (the start if nothing converged)
   bool reached_bound = false;  ///< stopped at parameter_min / parameter_max / max_steps
   std::string message;     ///< why the trace ended
+  bool start_converged = false;  ///< the corrector converged at the start (else `last` is it)
   int steps = 0;
   int failed_steps = 0;
   /// Samples that landed just past a special point and were replaced by a step over it.

@@ -318,6 +318,7 @@ TEST(PseudoArclength, SwitchesFromTheFlatBranchOntoTheTwoAndThreeFoldCones) {
     EXPECT_EQ(bp.multiplicity, 2) << "n = " << n;
     EXPECT_EQ(rim_angular_wavenumber(model, e.mode), n);
     EXPECT_NEAR((e.start - bp.x).norm(), 0.005 * e.mode.norm(), 1e-12);
+    EXPECT_EQ(e.switch_step, 0.005);
     std::vector<BranchSample> samples;
     ArclengthOptions ob = o;
     ob.parameter_max = bp.parameter + 0.3;
@@ -326,6 +327,7 @@ TEST(PseudoArclength, SwitchesFromTheFlatBranchOntoTheTwoAndThreeFoldCones) {
         trace_branch_along(family, e.start, bp.parameter, e.mode, 0.0, pinned, ob,
                            [&](const BranchSample& p) { samples.push_back(p); });
     ASSERT_GE(samples.size(), 5u) << cone.message;
+    EXPECT_TRUE(cone.start_converged);
     // Supercritical: the cone exists above the branch point and has n folds.
     EXPECT_GT(samples.back().parameter, bp.parameter);
     model.set_excess_angle(samples.back().parameter);
