@@ -1,17 +1,17 @@
 // branch_eigenvalues: the lowest eigenvalues along a traced branch.
 //
-// Reads a trace_disc output directory (scene.json and states/) and, for every saved state in
-// [--from, --to], computes the --count lowest eigenvalues of H v = lambda M v, with H the
-// Hessian, the trace's rigid pins removed (trace_disc's, on the mesh's mirror axes), and M the
-// lumped reference area of the control points: lambda = d2E / integral |dx|^2 dA in N/m^3, a
-// property of the sheet that converges under mesh refinement (mass_normalized_eigenpairs.hpp).
-// On a disc the
-// lowest is the nearly free turn of the fold pattern about the axis (zero on a perfect disc);
-// the next ones are the softest shape modes, whose sign decides stability. For each mode it also
-// gives the reference radius where its displacement is largest and, on a mesh with the mirrors
-// x -> -x and y -> -y, its parity under each (the symmetry class: both +1 for the B2 and A
-// modes of the two-fold cone, both -1 for B1, mixed for the E pair). Writes DIR/eigenvalues.csv
-// (atomically, studies/atomic_file.hpp).
+// Reads a trace_disc or study output directory (scene.json and states/) and, for every saved
+// state in [--from, --to], computes the --count lowest eigenvalues of H v = lambda M v, with H
+// the Hessian less six rigid-motion pins (the trace's, on the mesh's mirror axes, or pins chosen
+// on the state where those have lost their lever arm) and M the lumped reference area of the
+// control points: lambda = d2E / integral |dx|^2 dA in N/m^3, a property of the sheet that
+// converges under mesh refinement (mass_normalized_eigenpairs.hpp). On a disc the lowest is
+// usually the nearly free turn of the fold pattern about the axis (zero on a perfect disc); the
+// others are the softest shape modes, whose sign decides stability. For each mode it also gives
+// where on the sheet it is largest, how much of it is rigid motion, its parities under the
+// mesh's mirrors x -> -x and y -> -y (both +1 for the B2 and A modes of the two-fold cone, both
+// -1 for B1 and for the turn, mixed for the E pair) and its overlap with the turn. Writes
+// DIR/eigenvalues.csv (atomically, studies/atomic_file.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -24,6 +24,9 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
@@ -32,23 +35,40 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
 #include "studies/atomic_file.hpp"
+#include "studies/pattern_rotation.hpp"
 
 namespace {
 
 using namespace growshell;
 
+// Above this pinned_rigid_motion_condition the trace's pins are replaced by pins chosen on the
+// state (as the study's stability index does, studies/turn_free_stability_index.hpp).
+constexpr double kMaxPinCondition = 100.0;
+
 const char* kUsage = R"(usage: branch_eigenvalues RUN_DIR [options]
   --count K     number of lowest eigenvalues per state (default 4)
   --from P      first excess angle (default 0)
   --to Q        last excess angle (default: the last state)
-Writes RUN_DIR/eigenvalues.csv: phi_e, lambda_1..K (N/m^3: the Hessian's second variation per
-integral of |dx|^2 over the reference sheet, trace_disc's rigid pins removed), and
-peak_radius_1..K: the reference radius (m) of the sheet vertex where each mode's
-displacement is largest (where on the sheet the mode lives: at the apex core or out at the folds),
-and parity_x_1..K, parity_y_1..K: <v, S v>_M / <v, v>_M for the mesh's mirror S about x = 0 and
-y = 0 (+1 symmetric, -1 antisymmetric; nan when the mesh lacks that mirror, as a Gmsh mesh does).
-They classify the modes of a state that has the mesh's mirrors (traced with --symmetric-subspace
-1); a state whose fold pattern has turned about the axis mixes them.
+Writes RUN_DIR/eigenvalues.csv, one row per state:
+  phi_e
+  lambda_1..K           N/m^3: the Hessian's second variation per integral of |dx|^2 over the
+                        reference sheet, with six rigid-motion pins removed: the trace's, or
+                        pins chosen on the state where those hold its rigid motions with a
+                        condition number above 100
+  peak_radius_1..K      reference radius (m) of the sheet vertex where the mode's displacement is
+                        largest: at the apex core or out at the folds
+  parity_x_1..K, parity_y_1..K
+                        <v, S v>_M / <v, v>_M, v less its rigid part, for the mesh's mirror S
+                        about x = 0 and y = 0: +1 symmetric, -1 antisymmetric, nan when the mesh
+                        lacks that mirror (a Gmsh mesh). They classify the modes of a state with
+                        the mesh's mirrors (traced with --symmetric-subspace 1)
+  elastic_fraction_1..K |v - rigid part of v|_M / |v|_M: near 0 for a rigid motion that the pins
+                        barely hold, a pinning artefact, not a mode of the sheet
+  turn_overlap_1..K     |<v, t>_M| / (|v|_M |t|_M), both less their rigid parts, t the turn of the
+                        fold pattern over the material (studies/pattern_rotation.hpp): 1 for the
+                        turn itself, 0 for a mode orthogonal to it
+  pin_condition         how well the trace's pins hold the rigid motions of the state
+                        (pinned_rigid_motion_condition): large when they barely do
 )";
 
 // The mirror of the reference mesh about x = 0 (axis 0) or y = 0 (axis 1), or nothing when the
@@ -72,6 +92,33 @@ double mirror_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
     norm += m(i) * v.segment<3>(3 * i).squaredNorm();
   }
   return overlap / norm;
+}
+
+// v less its M-orthogonal projection onto the rigid motions of the state x (translations, and
+// rotations about the point c): the pins add a rigid velocity to every mode so that it vanishes
+// at them, and that part does not share the mode's mirror parity.
+Eigen::VectorXd without_rigid_motion(const Eigen::VectorXd& v, const Eigen::VectorXd& x,
+                                     const Eigen::Vector3d& c, const Eigen::VectorXd& m) {
+  const Eigen::Index n = x.size() / 3;
+  Eigen::MatrixXd rigid = Eigen::MatrixXd::Zero(x.size(), 6);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = x.segment<3>(3 * i) - c;
+    for (int a = 0; a < 3; ++a) {
+      rigid(3 * i + a, a) = 1.0;
+      rigid.block<3, 1>(3 * i, 3 + a) = Eigen::Vector3d(Eigen::Vector3d::Unit(a)).cross(r);
+    }
+  }
+  const Eigen::MatrixXd weighted = m.asDiagonal() * rigid;
+  const Eigen::VectorXd coefficients = (rigid.transpose() * weighted).ldlt().solve(weighted.transpose() * v);
+  return v - rigid * coefficients;
+}
+
+// |<a, b>_M| / (|a|_M |b|_M) with the per-dof masses m; nan when either vector vanishes.
+double mass_weighted_cosine(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                            const Eigen::VectorXd& m) {
+  const double norms = std::sqrt(a.cwiseProduct(m).dot(a) * b.cwiseProduct(m).dot(b));
+  if (!(norms > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::abs(a.cwiseProduct(m).dot(b)) / norms;
 }
 
 int run(int argc, char** argv) {
@@ -105,7 +152,9 @@ int run(int argc, char** argv) {
   for (int k = 1; k <= count; ++k) csv << ",peak_radius_" << k;
   for (int k = 1; k <= count; ++k) csv << ",parity_x_" << k;
   for (int k = 1; k <= count; ++k) csv << ",parity_y_" << k;
-  csv << '\n';
+  for (int k = 1; k <= count; ++k) csv << ",elastic_fraction_" << k;
+  for (int k = 1; k <= count; ++k) csv << ",turn_overlap_" << k;
+  csv << ",pin_condition\n";
   const std::array<std::optional<VertexSymmetry>, 2> mirrors = {mesh_mirror(P, 0), mesh_mirror(P, 1)};
   int rows = 0;
   for (const auto& file : files) {
@@ -114,7 +163,15 @@ int run(int argc, char** argv) {
     model.set_excess_angle(s.parameter);
     EigenpairOptions options;
     options.count = count;
-    const Eigenpairs pairs = lowest_mass_normalized_eigenpairs(model, s.x, dof_mass, pinned, options);
+    // The trace's pins, unless the state has carried them off their lever arm (a pinned rim
+    // vertex moved next to the axis): a rigid motion they barely hold would be a spurious soft
+    // mode.
+    const auto state_rows =
+        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(s.x.data(), s.x.size() / 3, 3);
+    const double condition = pinned_rigid_motion_condition(state_rows, pinned);
+    const std::vector<Eigen::Index> pins =
+        well_conditioned_pins(state_rows, pinned, model.sheet_vertices(), kMaxPinCondition);
+    const Eigenpairs pairs = lowest_mass_normalized_eigenpairs(model, s.x, dof_mass, pins, options);
     csv << s.parameter;
     std::printf("%9.5f", s.parameter);
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
@@ -133,15 +190,32 @@ int run(int argc, char** argv) {
       csv << ',' << radius;
       std::printf(" r=%.3f", radius);
     }
+    std::vector<Eigen::VectorXd> elastic;
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k)
+      elastic.push_back(without_rigid_motion(pairs.vectors.col(k), s.x, model.settings().growth.center, dof_mass));
     for (const auto& mirror : mirrors) {
       for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
-        const double parity = mirror_parity(pairs.vectors.col(k), model.reference().vertex_areas(), mirror);
+        const double parity = mirror_parity(elastic[static_cast<std::size_t>(k)], model.reference().vertex_areas(), mirror);
         csv << ',' << parity;
         std::printf(" %+.2f", parity);
       }
     }
-    csv << '\n';
-    std::printf("\n");
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+      const Eigen::VectorXd& e = elastic[static_cast<std::size_t>(k)];
+      const Eigen::VectorXd& v = pairs.vectors.col(k);
+      const double fraction = std::sqrt(e.cwiseProduct(dof_mass).dot(e) / v.cwiseProduct(dof_mass).dot(v));
+      csv << ',' << fraction;
+      std::printf(" e=%.3f", fraction);
+    }
+    const Eigen::VectorXd turn = without_rigid_motion(pattern_rotation(model, s.x, pins), s.x,
+                                                      model.settings().growth.center, dof_mass);
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+      const double overlap = mass_weighted_cosine(elastic[static_cast<std::size_t>(k)], turn, dof_mass);
+      csv << ',' << overlap;
+      std::printf(" t=%.3f", overlap);
+    }
+    csv << ',' << condition << '\n';
+    std::printf(" pins %.3g\n", condition);
     ++rows;
   }
   const std::string path = dir + "/eigenvalues.csv";

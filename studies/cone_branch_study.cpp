@@ -19,17 +19,16 @@
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
-#include "solvers/stability/hessian_negative_count.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_events.hpp"
 #include "studies/cone_branch_key_values.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/cone_sample_measures.hpp"
-#include "studies/pattern_rotation.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/special_point_modes.hpp"
 #include "studies/study_directory.hpp"
+#include "studies/turn_free_stability_index.hpp"
 
 namespace growshell {
 namespace {
@@ -119,7 +118,7 @@ class ConeBranchRun {
   std::unique_ptr<ShellGrowthFamily> family_;
   std::vector<Eigen::Index> pinned_;
   std::shared_ptr<const SymmetricSubspace> subspace_;
-  std::unique_ptr<HessianNegativeCount> full_count_;  ///< index_excludes_pattern_turn
+  std::unique_ptr<TurnFreeStabilityIndex> turn_free_index_;  ///< index_excludes_pattern_turn
   ArclengthOptions arclength_;
   std::unique_ptr<ConeSampleMeasurer> measures_;
   std::vector<BranchEvent> events_;
@@ -195,7 +194,7 @@ void ConeBranchRun::set_up() {
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
   family_ = std::make_unique<ShellGrowthFamily>(*model_);
   if (options_.index_excludes_pattern_turn)
-    full_count_ = std::make_unique<HessianNegativeCount>(*family_, pinned_);
+    turn_free_index_ = std::make_unique<TurnFreeStabilityIndex>(*family_, *model_, pinned_);
   if (options_.symmetric_subspace) {
     ConeSubspaceChoice choice =
         cone_mirror_subspace(*model_, scene_.geometry.radius, scene_.continuation.mode);
@@ -360,11 +359,7 @@ void ConeBranchRun::snapshot(double phi, const Eigen::VectorXd& x, const std::st
 /// negative count on the hyperplane orthogonal to the turn; the plain count where the state
 /// is axisymmetric to within 1e-9 R (no pattern, so nothing to turn).
 int ConeBranchRun::index_without_pattern_turn(const BranchSample& s) {
-  family_->set_parameter(s.parameter);
-  const int full = full_count_->at(s.x);
-  const Eigen::VectorXd turn = pattern_rotation(*model_, s.x, pinned_);
-  if (turn.lpNorm<Eigen::Infinity>() <= 1e-9 * scene_.geometry.radius) return full;
-  return full_count_->negative_orthogonal_to(turn);
+  return turn_free_index_->at(s.x, s.parameter);
 }
 
 /// The cone branch, in the subspace if there is one (full states in and out either way).
@@ -374,7 +369,7 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
   const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
   const auto event = [this](const LocatedEvent& e) { on_event(e); };
   ArclengthOptions options = arclength_;
-  if (full_count_)
+  if (turn_free_index_)
     options.stability_index = [this](const BranchSample& s) {
       return index_without_pattern_turn(s);
     };

@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// The stability index of a cone state without the fold pattern's turn about the growth axis:
+/// the number of negative eigenvalues of the shell's Hessian, rigid motions removed by six
+/// pins, restricted to the states orthogonal to the turn (pattern_rotation), a mode that the
+/// axisymmetric continuum leaves neutral and a discrete disc only nearly so
+/// (docs/guide/cone_branch.md, "Stability index").
+///
+/// The inertia of the pinned Hessian at an equilibrium does not depend on which six dofs hold
+/// the rigid motions, as long as they hold them. Pins chosen on the reference lose their lever
+/// arm when the sheet deforms far: on the n = 2 cone the rim vertex pinned on a fold is carried
+/// towards the axis as the fold pair closes, the spin about the axis is then held only by a
+/// short lever, and it becomes a nearly free mode of the pinned Hessian that mixes with the
+/// turn. Left alone, the count orthogonal to the turn field then reports a negative eigenvalue
+/// that no mode of the sheet has. So the count re-chooses its pins on the state whenever the
+/// given ones hold its rigid motions worse than a stated condition number.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/parametrized_objective.hpp"
+#include "libshell/assembly/shell_model.hpp"
+#include "solvers/stability/hessian_negative_count.hpp"
+
+namespace growshell {
+
+class TurnFreeStabilityIndex {
+ public:
+  /// `pins`: six rigid-motion pins (as rigid_motion_pinned_dofs returns them), e.g. those of
+  /// the trace. `family` is the model's energy as a function of the excess angle; both it and
+  /// `model` must outlive this object. Throws std::invalid_argument unless there are six pins
+  /// and max_pin_condition >= 1 (as pinned_rigid_motion_condition measures it).
+  TurnFreeStabilityIndex(ParametrizedObjective& family, const ShellModel& model,
+                         std::vector<Eigen::Index> pins, double max_pin_condition = 100.0);
+
+  /// The index at the equilibrium x at excess angle phi_e (sets the family's parameter): the
+  /// negative eigenvalues of the pinned Hessian orthogonal to the turn, or all of them where
+  /// the state has no pattern to turn (a turn field below 1e-9 of the model's size). The pins
+  /// are `pins` when they hold the rigid motions of x with a condition number up to
+  /// max_pin_condition, else re-chosen on x (well_conditioned_pins, anchored at the first pin,
+  /// among the model's sheet vertices). Throws as HessianNegativeCount.
+  int at(const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e);
+
+  /// The pins of the last at() (the given ones before the first).
+  const std::vector<Eigen::Index>& last_pins() const { return count_pins_; }
+
+ private:
+  ParametrizedObjective& family_;
+  const ShellModel& model_;
+  std::vector<Eigen::Index> pins_;
+  double max_pin_condition_;
+  double size_ = 0.0;  ///< the reference's extent, the scale of a vanishing turn field
+  std::vector<Eigen::Index> count_pins_;
+  std::unique_ptr<HessianNegativeCount> count_;  ///< with count_pins_
+};
+
+}  // namespace growshell
