@@ -25,25 +25,26 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Geometry>
 
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
 #include "libshell/io/scene.hpp"
+#include "libshell/mesh/rigid_motion.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/pattern_rotation.hpp"
+#include "studies/turn_free_stability_index.hpp"
 
 namespace {
 
 using namespace growshell;
 
 // Above this pinned_rigid_motion_condition the trace's pins are replaced by pins chosen on the
-// state (as the study's stability index does, studies/turn_free_stability_index.hpp).
-constexpr double kMaxPinCondition = 100.0;
+// state, as the study's stability index does.
+constexpr double kMaxPinCondition = TurnFreeStabilityIndex::kDefaultMaxPinCondition;
 
 const char* kUsage = R"(usage: branch_eigenvalues RUN_DIR [options]
   --count K     number of lowest eigenvalues per state (default 4)
@@ -99,15 +100,7 @@ double mirror_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
 // at them, and that part does not share the mode's mirror parity.
 Eigen::VectorXd without_rigid_motion(const Eigen::VectorXd& v, const Eigen::VectorXd& x,
                                      const Eigen::Vector3d& c, const Eigen::VectorXd& m) {
-  const Eigen::Index n = x.size() / 3;
-  Eigen::MatrixXd rigid = Eigen::MatrixXd::Zero(x.size(), 6);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d r = x.segment<3>(3 * i) - c;
-    for (int a = 0; a < 3; ++a) {
-      rigid(3 * i + a, a) = 1.0;
-      rigid.block<3, 1>(3 * i, 3 + a) = Eigen::Vector3d(Eigen::Vector3d::Unit(a)).cross(r);
-    }
-  }
+  const Eigen::MatrixXd rigid = rigid_velocity_fields(x, c);
   const Eigen::MatrixXd weighted = m.asDiagonal() * rigid;
   const Eigen::VectorXd coefficients = (rigid.transpose() * weighted).ldlt().solve(weighted.transpose() * v);
   return v - rigid * coefficients;

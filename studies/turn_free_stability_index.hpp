@@ -27,12 +27,16 @@ namespace growshell {
 
 class TurnFreeStabilityIndex {
  public:
+  /// The largest pinned_rigid_motion_condition at which the given pins are kept.
+  static constexpr double kDefaultMaxPinCondition = 100.0;
+
   /// `pins`: six rigid-motion pins (as rigid_motion_pinned_dofs returns them), e.g. those of
   /// the trace. `family` is the model's energy as a function of the excess angle; both it and
   /// `model` must outlive this object. Throws std::invalid_argument unless there are six pins
   /// and max_pin_condition >= 1 (as pinned_rigid_motion_condition measures it).
   TurnFreeStabilityIndex(ParametrizedObjective& family, const ShellModel& model,
-                         std::vector<Eigen::Index> pins, double max_pin_condition = 100.0);
+                         std::vector<Eigen::Index> pins,
+                         double max_pin_condition = kDefaultMaxPinCondition);
 
   /// The index at the equilibrium x at excess angle phi_e (sets the family's parameter): the
   /// negative eigenvalues of the pinned Hessian orthogonal to the turn, or all of them where

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
-/// A rigid motion p -> R p + t applied to vertex-major states (3 entries per vertex).
+/// A rigid motion p -> R p + t applied to vertex-major states (3 entries per vertex), and the
+/// infinitesimal rigid motions of a state.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <stdexcept>
 
 namespace growshell {
@@ -46,5 +48,23 @@ struct RigidMotion {
       throw std::invalid_argument("RigidMotion: a state needs 3 entries per vertex");
   }
 };
+
+/// The six rigid velocity fields of the state x (3 entries per vertex), as columns: the
+/// translations along x, y, z, then the rotations about the axes through `centre`,
+/// e_c x (p - centre) at each vertex p. Not normalised.
+inline Eigen::MatrixXd rigid_velocity_fields(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  if (x.size() % 3 != 0)
+    throw std::invalid_argument("rigid_velocity_fields: a state needs 3 entries per vertex");
+  Eigen::MatrixXd fields = Eigen::MatrixXd::Zero(x.size(), 6);
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const Eigen::Vector3d p = x.segment<3>(3 * v) - centre;
+    for (int c = 0; c < 3; ++c) {
+      fields(3 * v + c, c) = 1.0;
+      fields.block<3, 1>(3 * v, 3 + c) = Eigen::Vector3d(Eigen::Vector3d::Unit(c)).cross(p);
+    }
+  }
+  return fields;
+}
 
 }  // namespace growshell

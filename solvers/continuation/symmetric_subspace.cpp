@@ -124,17 +124,9 @@ std::vector<Eigen::Index> SymmetricSubspace::rigid_motion_pins(
   if (x.size() != full_dimension())
     throw std::invalid_argument("SymmetricSubspace::rigid_motion_pins: need " +
                                 std::to_string(full_dimension()) + " entries");
-  const Eigen::Index nv = x.size() / 3;
   // The six rigid velocity fields at x: translations, rotations about the origin (the
   // symmetries fix the origin, so they map rigid fields to rigid fields).
-  Eigen::MatrixXd fields = Eigen::MatrixXd::Zero(x.size(), 6);
-  for (Eigen::Index v = 0; v < nv; ++v) {
-    const Eigen::Vector3d p = x.segment<3>(3 * v);
-    for (int c = 0; c < 3; ++c) {
-      fields(3 * v + c, c) = 1.0;
-      fields.block<3, 1>(3 * v, 3 + c) = Eigen::Vector3d::Unit(c).cross(p);
-    }
-  }
+  Eigen::MatrixXd fields = rigid_velocity_fields(x);
   for (int k = 0; k < 6; ++k) {
     const double norm = fields.col(k).norm();
     if (norm > 0.0) fields.col(k) /= norm;

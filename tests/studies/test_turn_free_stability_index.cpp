@@ -11,6 +11,7 @@
 
 #include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/mesh/rigid_motion.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -75,18 +76,19 @@ TEST(TurnFreeStabilityIndex, IsTheSameForEveryRigidPlacementOfTheCone) {
     // above it: the two pins on B then no longer stop the spin about the line AB.
     const Eigen::Index a = disc.pins[0] / 3, b = disc.pins[3] / 3;
     const Eigen::Vector3d centre = cone.x.segment<3>(3 * a);
-    const Eigen::Matrix3d turn =
+    RigidMotion turn;
+    turn.rotation =
         Eigen::Quaterniond::FromTwoVectors(cone.x.segment<3>(3 * b) - centre, Eigen::Vector3d::UnitZ())
             .toRotationMatrix();
-    Eigen::VectorXd turned = cone.x;
-    for (Eigen::Index v = 0; v < turned.size() / 3; ++v)
-      turned.segment<3>(3 * v) = centre + turn * (cone.x.segment<3>(3 * v) - centre);
+    turn.translation = centre - turn.rotation * centre;
+    const Eigen::VectorXd turned = turn.apply(cone.x);
     ASSERT_GT(pinned_rigid_motion_condition(as_rows(turned), disc.pins), 1e8)
         << "the rotation must leave the trace's pins without a lever arm";
 
     EXPECT_EQ(index.at(turned, cone.parameter), placed) << "n = " << folds;
     EXPECT_NE(index.last_pins(), disc.pins);
-    EXPECT_LE(pinned_rigid_motion_condition(as_rows(turned), index.last_pins()), 100.0);
+    EXPECT_LE(pinned_rigid_motion_condition(as_rows(turned), index.last_pins()),
+              TurnFreeStabilityIndex::kDefaultMaxPinCondition);
     std::printf("n = %d: index %d at phi_e = %.4f\n", folds, placed, cone.parameter);
   }
 }
