@@ -68,6 +68,9 @@ Writes RUN_DIR/eigenvalues.csv, one row per state:
   turn_overlap_1..K     |<v, t>_M| / (|v|_M |t|_M), both less their rigid parts, t the turn of the
                         fold pattern over the material (studies/pattern_rotation.hpp): 1 for the
                         turn itself, 0 for a mode orthogonal to it
+  ghost_fraction_1..K   the part of |v|_M^2 on the ghost layer (the control points outside the
+                        sheet that shape its free edge): near 1 for a mode of the edge's
+                        representation rather than of the sheet
   pin_condition         how well the trace's pins hold the rigid motions of the state
                         (pinned_rigid_motion_condition): large when they barely do
 )";
@@ -147,6 +150,7 @@ int run(int argc, char** argv) {
   for (int k = 1; k <= count; ++k) csv << ",parity_y_" << k;
   for (int k = 1; k <= count; ++k) csv << ",elastic_fraction_" << k;
   for (int k = 1; k <= count; ++k) csv << ",turn_overlap_" << k;
+  for (int k = 1; k <= count; ++k) csv << ",ghost_fraction_" << k;
   csv << ",pin_condition\n";
   const std::array<std::optional<VertexSymmetry>, 2> mirrors = {mesh_mirror(P, 0), mesh_mirror(P, 1)};
   int rows = 0;
@@ -206,6 +210,15 @@ int run(int argc, char** argv) {
       const double overlap = mass_weighted_cosine(elastic[static_cast<std::size_t>(k)], turn, dof_mass);
       csv << ',' << overlap;
       std::printf(" t=%.3f", overlap);
+    }
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+      const Eigen::VectorXd& v = pairs.vectors.col(k);
+      double sheet_part = 0.0;
+      for (const int vertex : model.sheet_vertices())
+        sheet_part += v.segment<3>(3 * vertex).cwiseProduct(dof_mass.segment<3>(3 * vertex)).dot(v.segment<3>(3 * vertex));
+      const double fraction = 1.0 - sheet_part / v.cwiseProduct(dof_mass).dot(v);
+      csv << ',' << fraction;
+      std::printf(" g=%.3f", fraction);
     }
     csv << ',' << condition << '\n';
     std::printf(" pins %.3g\n", condition);

@@ -73,7 +73,8 @@ Studies (study.kind):
   cone_branch  scene keys: the sheet, mesh and material keys, continuation.mode, phi_start,
                phi_min, phi_max, max_step, min_step, study.through_contact, study.tolerance,
                study.max_tangent_angle, study.eigenmodes, study.symmetric_subspace,
-               study.index_excludes_pattern_turn, study.symmetry_threshold, study.core_radius, output.snapshot_every,
+               study.index_excludes_pattern_turn, study.phase_condition, study.symmetry_threshold,
+               study.core_radius, output.snapshot_every,
                output.write_vtk (docs/guide/cone_branch.md)
                writes DIR/results.json (the key values), branch.csv, events.json, states/,
                record.json, branch.pvd and VTK files, cost.json, scene.json and eb_hat.png

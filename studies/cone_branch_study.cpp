@@ -17,6 +17,8 @@
 #include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
+#include "solvers/continuation/phase_condition_trace.hpp"
+#include "solvers/continuation/phase_conditioned_family.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
@@ -25,6 +27,7 @@
 #include "studies/cone_branch_key_values.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/cone_sample_measures.hpp"
+#include "studies/pattern_phase.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/special_point_modes.hpp"
 #include "studies/study_directory.hpp"
@@ -38,7 +41,7 @@ const std::vector<std::string> kColumns = {
     "phi_e",     "E_stretch", "E_bend",      "Eb_hat",
     "area",      "min_gap",   "n_negative",  "corrector_iterations",
     "arclength", "folds",     "core_radius", "s4_defect",
-    "chord_up",  "chord_down"};
+    "chord_up",  "chord_down", "phase_force"};
 
 /// printf into a string: one line of the log.
 [[gnu::format(printf, 1, 2)]] std::string line_printf(const char* format, ...) {
@@ -102,6 +105,7 @@ class ConeBranchRun {
   void on_event(const LocatedEvent& e);
   void snapshot(double phi, const Eigen::VectorXd& x, const std::string& name);
   int index_without_pattern_turn(const BranchSample& s);
+  double phase_force(const BranchSample& s);
   BranchTrace trace_cone(const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
                          double dphi);
   bool trace_from_flat(BranchTrace& trace);
@@ -119,6 +123,9 @@ class ConeBranchRun {
   std::vector<Eigen::Index> pinned_;
   std::shared_ptr<const SymmetricSubspace> subspace_;
   std::unique_ptr<TurnFreeStabilityIndex> turn_free_index_;  ///< index_excludes_pattern_turn
+  /// The phase condition's functional, unit length, where the cone is traced in the full space
+  /// with one (empty otherwise).
+  Eigen::VectorXd phase_functional_;
   ArclengthOptions arclength_;
   std::unique_ptr<ConeSampleMeasurer> measures_;
   std::vector<BranchEvent> events_;
@@ -256,7 +263,7 @@ void ConeBranchRun::on_sample(const BranchSample& s) {
                        static_cast<double>(s.negative_eigenvalues),
                        static_cast<double>(s.corrector_iterations), s.arclength + arclength_offset_,
                        static_cast<double>(m.folds), m.core_radius, m.s4_defect, m.chord_up,
-                       m.chord_down});
+                       m.chord_down, phase_force(s)});
   if (!symmetry_lost_ && m.s4_defect > options_.symmetry_threshold) record_symmetry_lost(s, m);
   previous_phi_ = s.parameter;
   previous_defect_ = m.s4_defect;
@@ -307,8 +314,15 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
   if (options_.eigenmodes > 0) {
     // The lowest eigenpairs of the pinned Hessian there, their overlap with the pattern's turn
     // and their mode shapes (the state displaced along each mode by 5 % of R at its largest).
+    // The pins are re-chosen on the state where the trace's barely hold its rigid motions, as
+    // the stability index does, so that a nearly free spin is not reported as a mode.
+    const Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>> rows(sp.x.data(),
+                                                                             sp.x.size() / 3, 3);
+    const std::vector<Eigen::Index> pins =
+        well_conditioned_pins(rows, pinned_, model_->sheet_vertices(),
+                              TurnFreeStabilityIndex::kDefaultMaxPinCondition);
     const SpecialPointModes modes =
-        special_point_modes(*model_, sp.x, sp.parameter, pinned_, options_.eigenmodes);
+        special_point_modes(*model_, sp.x, sp.parameter, pins, options_.eigenmodes);
     j << ", \"orientation_overlap\": [";
     for (std::size_t k = 0; k < modes.orientation_overlap.size(); ++k)
       j << (k ? ", " : "") << modes.orientation_overlap[k];
@@ -362,7 +376,19 @@ int ConeBranchRun::index_without_pattern_turn(const BranchSample& s) {
   return turn_free_index_->at(s.x, s.parameter);
 }
 
-/// The cone branch, in the subspace if there is one (full states in and out either way).
+/// |mu|: the force (N) with which the phase condition holds the sample's pattern, the gradient's
+/// component along the unit functional over the free dofs; NaN without a phase condition.
+double ConeBranchRun::phase_force(const BranchSample& s) {
+  if (phase_functional_.size() != s.x.size() || branch_ != "cone")
+    return std::numeric_limits<double>::quiet_NaN();
+  Eigen::VectorXd g;
+  model_->set_excess_angle(s.parameter);
+  model_->evaluate(s.x, &g, nullptr);
+  return std::abs(phase_multiplier(g, phase_functional_, pinned_));
+}
+
+/// The cone branch, in the subspace if there is one (full states in and out either way); in
+/// the full space with the pattern's orientation held by a phase condition if asked.
 BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
                                       const Eigen::VectorXd& dx, double dphi) {
   const auto sample = [this](const BranchSample& s) { on_sample(s); };
@@ -373,10 +399,17 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
     options.stability_index = [this](const BranchSample& s) {
       return index_without_pattern_turn(s);
     };
-  return subspace_ ? trace_branch_in_subspace(*family_, *subspace_, x0, phi0, dx, dphi, pinned_,
-                                              options, sample, special, events_, event)
-                   : trace_branch_along(*family_, x0, phi0, dx, dphi, pinned_, options, sample,
-                                        special, events_, event);
+  if (subspace_)
+    return trace_branch_in_subspace(*family_, *subspace_, x0, phi0, dx, dphi, pinned_, options,
+                                    sample, special, events_, event);
+  if (options_.phase_condition) {
+    const Eigen::VectorXd c = pattern_phase_functional(*model_, x0, dx, scene_.continuation.mode);
+    phase_functional_ = c / c.norm();
+    return trace_branch_with_phase_condition(*family_, phase_functional_, x0, phi0, dx, dphi,
+                                             pinned_, options, sample, special, events_, event);
+  }
+  return trace_branch_along(*family_, x0, phi0, dx, dphi, pinned_, options, sample, special,
+                            events_, event);
 }
 
 /// The flat branch to the branch point of the wanted mode, then the cone; false (with the
@@ -523,6 +556,7 @@ ConeBranchStudyOptions cone_branch_study_options(const Scene& scene) {
   o.eigenmodes = scene.study.eigenmodes;
   o.symmetric_subspace = scene.study.symmetric_subspace;
   o.index_excludes_pattern_turn = scene.study.index_excludes_pattern_turn;
+  o.phase_condition = scene.study.phase_condition;
   o.symmetry_threshold = scene.study.symmetry_threshold;
   o.through_contact = scene.study.through_contact;
   return o;

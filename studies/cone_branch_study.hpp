@@ -56,6 +56,10 @@ struct ConeBranchStudyOptions {
   /// HessianNegativeCount::negative_orthogonal_to); on an axisymmetric state, which has no
   /// pattern to turn, the plain count. The flat branch always takes the plain count.
   bool index_excludes_pattern_turn = true;
+  /// In the full space, hold the n-fold pattern's orientation with a phase condition
+  /// (pattern_phase_functional, trace_branch_with_phase_condition); branch.csv's phase_force
+  /// is the multiplier's force (N), NaN where there is none.
+  bool phase_condition = true;
   /// S4 defect (> 0) above which symmetry_lost is reported (two-fold cone only).
   double symmetry_threshold = 1e-3;
   /// Go on past the first contact instead of stopping there.

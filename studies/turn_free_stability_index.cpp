@@ -31,9 +31,12 @@ TurnFreeStabilityIndex::TurnFreeStabilityIndex(ParametrizedObjective& family,
   count_pins_ = pins_;
 }
 
+std::vector<Eigen::Index> TurnFreeStabilityIndex::pins_at(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return well_conditioned_pins(as_rows(x), pins_, model_.sheet_vertices(), max_pin_condition_);
+}
+
 int TurnFreeStabilityIndex::at(const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e) {
-  const std::vector<Eigen::Index> pins =
-      well_conditioned_pins(as_rows(x), pins_, model_.sheet_vertices(), max_pin_condition_);
+  const std::vector<Eigen::Index> pins = pins_at(x);
   if (!count_ || pins != count_pins_) {
     count_ = std::make_unique<HessianNegativeCount>(family_, pins);
     count_pins_ = pins;

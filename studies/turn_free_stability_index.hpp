@@ -46,6 +46,12 @@ class TurnFreeStabilityIndex {
   /// among the model's sheet vertices). Throws as HessianNegativeCount.
   int at(const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e);
 
+  /// The pins at() uses at the state x: the given ones while they hold its rigid motions with a
+  /// condition number up to max_pin_condition, else re-chosen on x. Every analysis of a state
+  /// (its eigenpairs, its turn field) should use these, so that a rigid motion the trace's pins
+  /// barely hold is not read as a soft mode of the sheet.
+  std::vector<Eigen::Index> pins_at(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
   /// The pins of the last at() (the given ones before the first).
   const std::vector<Eigen::Index>& last_pins() const { return count_pins_; }
 

@@ -211,6 +211,12 @@ struct SceneStudy {
   /// mode of the axisymmetric sheet that a discrete mesh leaves only nearly neutral, of either
   /// sign (docs/guide/cone_branch.md, "Stability index").
   bool index_excludes_pattern_turn = true;
+  /// Where the cone is traced in the full space (a mesh without its mirrors, or
+  /// symmetric_subspace off), hold the orientation of its fold pattern about the axis with a
+  /// phase condition (docs/continuation.md, "Phase condition"), so that the mesh's weak hold
+  /// on the pattern's turn does not steer the branch; branch.csv's phase_force is then the
+  /// force that holds it.
+  bool phase_condition = true;
   /// S4 defect (dimensionless) above which the event symmetry_lost is reported, > 0.
   double symmetry_threshold = 1e-3;
   /// Radius (m) about the growth centre within which the sheet is left out of the gap and the
