@@ -143,16 +143,17 @@ struct ConeSymmetry {
   S4Defect s4;
   FoldDirections folds;  ///< along s4.axis
   FoldChords chords;
-  /// true: the image points were the vertices' (the mesh has the quarter turn: exact); false:
-  /// they were interpolated (sheet_state_evaluator, O(spacing^2) error).
+  /// true: the image points were the vertices' (the mesh has the quarter turn); false: they
+  /// were evaluated on the limit surface at the quarter-turned material points
+  /// (sheet_state_evaluator). Both are exact.
   bool vertex_map = false;
 };
 
 /// S4 defect, fold directions and chords of the state x of `model` (about the growth
 /// centre): the S4 defect as s4_symmetry_defect(model, x) where the reference mesh has the
-/// quarter-turn vertex symmetry, otherwise from the sheet vertices and the interpolated state
-/// at their quarter-turned reference points (sheet_state_evaluator); the folds and chords on
-/// the interpolated state either way. The apex is the limit position of the sheet vertex at
+/// quarter-turn vertex symmetry, otherwise from the sheet vertices and the limit surface at
+/// their quarter-turned reference points (sheet_state_evaluator); the folds and chords on the
+/// limit surface either way. The apex is the limit position of the sheet vertex at
 /// the growth centre, or for a ring the centroid of its inner rim's (as analyze_rim_folds);
 /// a ring's chords skip the radius fractions inside its hole (and use the rim alone if none
 /// is left). Throws std::invalid_argument as the functions it calls.

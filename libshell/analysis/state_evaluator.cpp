@@ -9,14 +9,20 @@
 #include <stdexcept>
 #include <vector>
 
+#include "libshell/subdivision/limit_surface.hpp"
+
 namespace growshell {
 namespace {
 
-/// The reference triangulation with a uniform grid of buckets for point location.
+/// The reference triangulation with a uniform grid of buckets for point location, and the
+/// elements' patches for the exact limit surface.
 struct Interpolant {
   Eigen::MatrixX2d reference;  // reference limit positions (x, y) of the sheet vertices
-  Eigen::MatrixX3d current;    // their current limit positions
-  std::vector<std::array<int, 3>> triangles;  // sheet indices
+  std::vector<std::array<int, 3>> triangles;  // sheet indices, one per element
+  Eigen::MatrixX3d reference_control;  // control points, one row per vertex
+  Eigen::MatrixX3d current_control;
+  std::vector<LoopPatch> patches;  // per element (= per triangle)
+  double tolerance = 0.0;  // of the parameter search, in reference length
   Eigen::Vector2d origin;
   double cell = 1.0;
   int nx = 1, ny = 1;
@@ -46,24 +52,73 @@ struct Interpolant {
     }
     return best;
   }
-  Eigen::Vector3d interpolate(int t, const Eigen::Vector3d& l) const {
-    const auto& tri = triangles[static_cast<std::size_t>(t)];
-    return (l(0) * current.row(tri[0]) + l(1) * current.row(tri[1]) + l(2) * current.row(tri[2]))
-        .transpose();
+  /// The parameter (v, w) of element t, in its triangle, whose reference limit point is
+  /// nearest p, by Newton's method on the planar map (v, w) -> X(v, w) projected onto the
+  /// triangle, from the barycentric guess l; `residual` gets |p - X(v, w)|.
+  Eigen::Vector2d parameter(int t, const Eigen::Vector2d& p, const Eigen::Vector3d& l,
+                            double* residual) const {
+    const LoopPatch& patch = patches[static_cast<std::size_t>(t)];
+    const auto project = [](Eigen::Vector2d q) {
+      q = q.cwiseMax(0.0);
+      const double sum = q.sum();
+      return sum > 1.0 ? Eigen::Vector2d(q / sum) : q;
+    };
+    Eigen::Vector2d q = project(Eigen::Vector2d(l(1), l(2)));
+    double r = std::numeric_limits<double>::infinity();
+    for (int iteration = 0; iteration < 30; ++iteration) {
+      const LimitSurfacePoint S = evaluate_limit_surface(reference_control, patch, q(0), q(1));
+      const Eigen::Vector2d d = p - S.position.head<2>();
+      r = d.norm();
+      if (r <= tolerance) break;
+      const Eigen::Matrix2d J = S.tangents.topRows<2>();
+      const Eigen::Vector2d next = project(q + J.partialPivLu().solve(d));
+      if ((next - q).norm() < 1e-15) break;  // pinned at the triangle's edge: p lies beyond it
+      q = next;
+    }
+    *residual = r;
+    return q;
+  }
+  /// y at parameter q of element t, continued to first order to the reference point p where p
+  /// lies beyond the element (residual above the tolerance).
+  Eigen::Vector3d limit_state(int t, const Eigen::Vector2d& q, const Eigen::Vector2d& p) const {
+    const LoopPatch& patch = patches[static_cast<std::size_t>(t)];
+    const LimitSurfacePoint S = evaluate_limit_surface(current_control, patch, q(0), q(1));
+    const LimitSurfacePoint R = evaluate_limit_surface(reference_control, patch, q(0), q(1));
+    const Eigen::Vector2d d = p - R.position.head<2>();
+    if (d.norm() <= tolerance) return S.position;
+    const Eigen::Matrix2d J = R.tangents.topRows<2>();
+    return S.position + S.tangents * J.partialPivLu().solve(d);
   }
   Eigen::Vector3d operator()(const Eigen::Vector3d& X) const {
     const Eigen::Vector2d p = X.head<2>();
     const int i = static_cast<int>(std::floor((p.x() - origin.x()) / cell));
     const int j = static_cast<int>(std::floor((p.y() - origin.y()) / cell));
-    // Inside: the first triangle of the point's cell that contains it (ties on shared edges
-    // give the same value up to rounding).
+    // The element of the point's cell whose reference limit surface covers it: first those
+    // whose limit-vertex triangle contains it, then the others of the cell (the limit image of
+    // an element bulges past its vertices' triangle by O(spacing^2)); ties on shared edges
+    // give the same value up to rounding.
     const double slack = -1e-12;
-    if (i >= 0 && i < nx && j >= 0 && j < ny)
-      for (int t : buckets[static_cast<std::size_t>(j * nx + i)]) {
-        const Eigen::Vector3d l = barycentric(t, p);
-        if (l.minCoeff() >= slack) return interpolate(t, l);
-      }
-    // Outside: linear extrapolation from the nearest triangle (lowest index among ties).
+    if (i >= 0 && i < nx && j >= 0 && j < ny) {
+      const std::vector<int>& cell_triangles = buckets[static_cast<std::size_t>(j * nx + i)];
+      int best = -1;
+      double best_residual = std::numeric_limits<double>::infinity();
+      Eigen::Vector2d best_q = Eigen::Vector2d::Zero();
+      for (const bool containing : {true, false})
+        for (int t : cell_triangles) {
+          const Eigen::Vector3d l = barycentric(t, p);
+          if ((l.minCoeff() >= slack) != containing) continue;
+          double residual = 0.0;
+          const Eigen::Vector2d q = parameter(t, p, l, &residual);
+          if (residual <= tolerance) return limit_state(t, q, p);
+          if (residual < best_residual) {
+            best_residual = residual;
+            best = t;
+            best_q = q;
+          }
+        }
+      if (best >= 0) return limit_state(best, best_q, p);
+    }
+    // Outside: first-order continuation from the nearest triangle (lowest index among ties).
     int best = 0;
     double best_distance = std::numeric_limits<double>::infinity();
     for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
@@ -73,7 +128,9 @@ struct Interpolant {
         best = t;
       }
     }
-    return interpolate(best, barycentric(best, p));
+    const Eigen::Vector3d l = barycentric(best, p);
+    double residual = 0.0;
+    return limit_state(best, parameter(best, p, l, &residual), p);
   }
 };
 
@@ -87,7 +144,11 @@ StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<c
     throw std::invalid_argument("sheet_state_evaluator: the state holds a non-finite value");
   auto in = std::make_shared<Interpolant>();
   in->reference = model.limit_positions(model.reference_positions()).leftCols<2>();
-  in->current = model.limit_positions(x);
+  in->reference_control = Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
+      model.reference_positions().data(), model.dimension() / 3, 3);
+  in->current_control =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
+  in->patches = model.patches().patch;
   const auto& sheet = model.sheet_vertices();
   std::vector<int> sheet_index(static_cast<std::size_t>(model.topology().num_vertices()), -1);
   for (std::size_t k = 0; k < sheet.size(); ++k) sheet_index[static_cast<std::size_t>(sheet[k])] = static_cast<int>(k);
@@ -104,6 +165,7 @@ StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<c
   const double extent = std::max((hi - lo).maxCoeff(), std::numeric_limits<double>::min());
   const int per_side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(in->triangles.size()))));
   in->cell = extent / per_side * (1.0 + 1e-9);
+  in->tolerance = 1e-13 * extent;
   in->origin = lo;
   in->nx = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / in->cell)));
   in->ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / in->cell)));

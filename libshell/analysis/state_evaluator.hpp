@@ -16,17 +16,18 @@ namespace growshell {
 /// and y count).
 using StateEvaluator = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
 
-/// y(X) of the state x (control points, vertex-major like ShellModel, m) of `model`, by
-/// barycentric interpolation of the limit positions of the sheet vertices
-/// (ShellModel::limit_positions) over the reference triangulation of the elements, with the
-/// vertices at their reference limit positions. Exact at the sheet vertices; between them the
-/// error is that of linear interpolation, O(spacing^2 |D^2 y|) (spacing = the local element
-/// size), and O(spacing |Dy|) at a kink such as the apex of a cone. A point outside the
-/// triangulation (between the rim polygon and the rim circle) is extrapolated linearly from
-/// the nearest element triangle. It stands in for the exact limit surface
-/// (evaluate_limit_surface) and can be swapped for it here without changing its callers.
-/// The evaluator holds a copy of what it needs (not the model). Throws std::invalid_argument
-/// if x does not have model.dimension() entries or holds a non-finite value.
+/// y(X) of the state x (control points, vertex-major like ShellModel, m) of `model` on its
+/// exact limit surface: the element and parameter (v, w) whose reference limit point is X are
+/// found by Newton's method on the reference limit map (the reference sheet is planar), started
+/// from the barycentric coordinates of X in the triangle of the element's reference limit
+/// vertices (located with a grid of buckets), and y is the current limit surface there
+/// (evaluate_limit_surface), exact to the search's tolerance of 1e-13 of the sheet's extent. So
+/// y(X) is the same material point however the mesh is laid out, which is what a symmetry
+/// measure that maps material points onto each other needs. A point outside the reference limit
+/// surface (between the rim's limit curve and the rim circle) gets the first-order continuation
+/// y + (dy/d(v, w)) (dX/d(v, w))^-1 dX from the nearest point of the nearest element. The
+/// evaluator holds a copy of what it needs (not the model). Throws std::invalid_argument if x
+/// does not have model.dimension() entries or holds a non-finite value.
 StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x);
 
 }  // namespace growshell

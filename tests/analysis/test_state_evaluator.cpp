@@ -1,11 +1,14 @@
-// The interpolated state of a ShellModel: exact at the sheet vertices, exact for affine states
-// inside and outside the triangulation, and second-order accurate for a curved one.
+// The state of a ShellModel at a material point: exact at the sheet vertices, exact for affine
+// states inside and outside the triangulation, and the exact limit surface at any parameter point
+// of any element, on a lattice disc and on an unstructured Gmsh disc with irregular vertices.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "libshell/analysis/state_evaluator.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
+#include "libshell/mesh/gmsh_disc_mesh.hpp"
+#include "libshell/subdivision/limit_surface.hpp"
 
 namespace growshell {
 namespace {
@@ -36,29 +39,53 @@ TEST(StateEvaluator, ExactAtVerticesAndForAffineStates) {
     EXPECT_LT((y(ref.row(k).transpose()) - cur.row(k).transpose()).norm(), 1e-12);
 }
 
-TEST(StateEvaluator, SecondOrderForACurvedState) {
-  // z = X^2 + Y^2 / 2 at the control points: the limit surface is that paraboloid up to a
-  // constant shift of O(spacing^2), and the interpolation error is O(spacing^2) too.
-  double previous = 0.0;
-  for (int rings : {6, 12}) {
-    ShellModel model = disc_model(rings);
-    Eigen::VectorXd x = model.reference_positions();
-    for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-      x(3 * v + 2) = x(3 * v) * x(3 * v) + 0.5 * x(3 * v + 1) * x(3 * v + 1);
-    const StateEvaluator y = sheet_state_evaluator(model, x);
-    double worst = 0.0;
-    for (int k = 0; k < 50; ++k) {
-      const double r = 0.8 * std::sqrt((k + 0.5) / 50.0), t = 2.4 * k;
-      const Eigen::Vector3d X(r * std::cos(t), r * std::sin(t), 0.0);
-      const double exact = X.x() * X.x() + 0.5 * X.y() * X.y();
-      worst = std::max(worst, std::abs(y(X).z() - exact));
-    }
-    if (previous > 0.0) {
-      EXPECT_GT(previous / worst, 3.0);  // halving the spacing: ~4x
-    }
-    EXPECT_LT(worst, 1.5 / (rings * rings));  // measured 0.87 / rings^2
-    previous = worst;
+/// A curved, sheared state: z = X^2 + Y^2 / 2 and an in-plane twist at the control points.
+Eigen::VectorXd curved_state(const ShellModel& model) {
+  Eigen::VectorXd x = model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const double X = x(3 * v), Y = x(3 * v + 1);
+    x(3 * v) += 0.1 * Y * Y;
+    x(3 * v + 1) -= 0.2 * X * Y;
+    x(3 * v + 2) = X * X + 0.5 * Y * Y;
   }
+  return x;
+}
+
+/// At the reference limit point of each element's parameter points, the evaluator gives the
+/// current limit surface at the same parameter point.
+double worst_limit_surface_error(const ShellModel& model, const Eigen::VectorXd& x) {
+  const StateEvaluator y = sheet_state_evaluator(model, x);
+  const Eigen::VectorXd& X = model.reference_positions();
+  const auto rows = [](const Eigen::VectorXd& v) {
+    return Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(v.data(), v.size() / 3, 3);
+  };
+  const Eigen::MatrixX3d reference = rows(X), current = rows(x);
+  double worst = 0.0;
+  for (Eigen::Index e = 0; e < model.num_elements(); e += 3) {
+    const LoopPatch& patch = model.patches().patch[static_cast<std::size_t>(e)];
+    for (const Eigen::Vector2d& q : {Eigen::Vector2d(1.0 / 3, 1.0 / 3), Eigen::Vector2d(0.1, 0.05),
+                                     Eigen::Vector2d(0.7, 0.2), Eigen::Vector2d(0.02, 0.9),
+                                     Eigen::Vector2d(0.5, 0.0)}) {
+      const Eigen::Vector3d P = evaluate_limit_surface(reference, patch, q(0), q(1)).position;
+      const Eigen::Vector3d expected = evaluate_limit_surface(current, patch, q(0), q(1)).position;
+      worst = std::max(worst, (y(P) - expected).norm());
+    }
+  }
+  return worst;
+}
+
+TEST(StateEvaluator, IsTheLimitSurfaceOnALatticeDisc) {
+  const ShellModel model = disc_model(8);
+  EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
+}
+
+TEST(StateEvaluator, IsTheLimitSurfaceOnAnUnstructuredDiscWithIrregularVertices) {
+  GmshDiscMeshOptions o;
+  o.size_slope = 0.3;
+  o.size_floor = 0.05;
+  const ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
+  ASSERT_GT(model.patches().num_irregular(), 10);
+  EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
 }
 
 TEST(StateEvaluator, RejectsBadStates) {
