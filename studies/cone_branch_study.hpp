@@ -59,7 +59,7 @@ struct ConeBranchStudyOptions {
   /// In the full space, hold the n-fold pattern's orientation with a phase condition
   /// (pattern_phase_functional, trace_branch_with_phase_condition); branch.csv's phase_force
   /// is the multiplier's force (N), NaN where there is none.
-  bool phase_condition = true;
+  bool phase_condition = false;
   /// S4 defect (> 0) above which symmetry_lost is reported (two-fold cone only).
   double symmetry_threshold = 1e-3;
   /// Go on past the first contact instead of stopping there.
