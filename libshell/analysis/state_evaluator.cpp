@@ -82,8 +82,9 @@ struct Interpolant {
   /// lies beyond the element (residual above the tolerance).
   Eigen::Vector3d limit_state(int t, const Eigen::Vector2d& q, const Eigen::Vector2d& p) const {
     const LoopPatch& patch = patches[static_cast<std::size_t>(t)];
-    const LimitSurfacePoint S = evaluate_limit_surface(current_control, patch, q(0), q(1));
-    const LimitSurfacePoint R = evaluate_limit_surface(reference_control, patch, q(0), q(1));
+    const PatchBasis basis = evaluate_patch_basis(patch, q(0), q(1));
+    const LimitSurfacePoint S = evaluate_limit_surface(current_control, patch, basis);
+    const LimitSurfacePoint R = evaluate_limit_surface(reference_control, patch, basis);
     const Eigen::Vector2d d = p - R.position.head<2>();
     if (d.norm() <= tolerance) return S.position;
     const Eigen::Matrix2d J = R.tangents.topRows<2>();
