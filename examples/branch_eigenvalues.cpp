@@ -166,8 +166,7 @@ int run(int argc, char** argv) {
     const auto state_rows =
         Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(s.x.data(), s.x.size() / 3, 3);
     const double condition = pinned_rigid_motion_condition(state_rows, pinned);
-    const std::vector<Eigen::Index> pins =
-        well_conditioned_pins(state_rows, pinned, model.sheet_vertices(), kMaxPinCondition);
+    const std::vector<Eigen::Index> pins = analysis_pins(model, s.x, pinned, kMaxPinCondition);
     const Eigenpairs pairs = lowest_mass_normalized_eigenpairs(model, s.x, dof_mass, pins, options);
     csv << s.parameter;
     std::printf("%9.5f", s.parameter);

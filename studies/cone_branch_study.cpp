@@ -316,11 +316,8 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
     // and their mode shapes (the state displaced along each mode by 5 % of R at its largest).
     // The pins are re-chosen on the state where the trace's barely hold its rigid motions, as
     // the stability index does, so that a nearly free spin is not reported as a mode.
-    const Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>> rows(sp.x.data(),
-                                                                             sp.x.size() / 3, 3);
-    const std::vector<Eigen::Index> pins =
-        well_conditioned_pins(rows, pinned_, model_->sheet_vertices(),
-                              TurnFreeStabilityIndex::kDefaultMaxPinCondition);
+    const std::vector<Eigen::Index> pins = analysis_pins(
+        *model_, sp.x, pinned_, TurnFreeStabilityIndex::kDefaultMaxPinCondition);
     const SpecialPointModes modes =
         special_point_modes(*model_, sp.x, sp.parameter, pins, options_.eigenmodes);
     j << ", \"orientation_overlap\": [";

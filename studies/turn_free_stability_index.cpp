@@ -31,12 +31,15 @@ TurnFreeStabilityIndex::TurnFreeStabilityIndex(ParametrizedObjective& family,
   count_pins_ = pins_;
 }
 
-std::vector<Eigen::Index> TurnFreeStabilityIndex::pins_at(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  return well_conditioned_pins(as_rows(x), pins_, model_.sheet_vertices(), max_pin_condition_);
+std::vector<Eigen::Index> analysis_pins(const ShellModel& model,
+                                        const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        const std::vector<Eigen::Index>& pins,
+                                        double max_pin_condition) {
+  return well_conditioned_pins(as_rows(x), pins, model.sheet_vertices(), max_pin_condition);
 }
 
 int TurnFreeStabilityIndex::at(const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e) {
-  const std::vector<Eigen::Index> pins = pins_at(x);
+  const std::vector<Eigen::Index> pins = analysis_pins(model_, x, pins_, max_pin_condition_);
   if (!count_ || pins != count_pins_) {
     count_ = std::make_unique<HessianNegativeCount>(family_, pins);
     count_pins_ = pins;

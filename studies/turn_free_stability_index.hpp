@@ -25,6 +25,17 @@
 
 namespace growshell {
 
+/// The pins for analysing the state x of `model` (its eigenpairs, its turn field): `pins` (six
+/// rigid-motion pins, e.g. the trace's) while they hold the rigid motions of x with a
+/// pinned_rigid_motion_condition up to max_pin_condition, else pins re-chosen on x
+/// (well_conditioned_pins, anchored at the first pin, among the model's sheet vertices), so that
+/// a rigid motion the trace's pins barely hold is not read as a soft mode of the sheet. Throws as
+/// well_conditioned_pins.
+std::vector<Eigen::Index> analysis_pins(const ShellModel& model,
+                                        const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        const std::vector<Eigen::Index>& pins,
+                                        double max_pin_condition);
+
 class TurnFreeStabilityIndex {
  public:
   /// The largest pinned_rigid_motion_condition at which the given pins are kept.
@@ -45,12 +56,6 @@ class TurnFreeStabilityIndex {
   /// max_pin_condition, else re-chosen on x (well_conditioned_pins, anchored at the first pin,
   /// among the model's sheet vertices). Throws as HessianNegativeCount.
   int at(const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e);
-
-  /// The pins at() uses at the state x: the given ones while they hold its rigid motions with a
-  /// condition number up to max_pin_condition, else re-chosen on x. Every analysis of a state
-  /// (its eigenpairs, its turn field) should use these, so that a rigid motion the trace's pins
-  /// barely hold is not read as a soft mode of the sheet.
-  std::vector<Eigen::Index> pins_at(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// The pins of the last at() (the given ones before the first).
   const std::vector<Eigen::Index>& last_pins() const { return count_pins_; }
