@@ -26,6 +26,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "core/objective_at_parameter.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/saved_point.hpp"
@@ -157,7 +158,7 @@ int run(int argc, char** argv) {
   for (const auto& file : files) {
     const BranchSample s = examples::load_point(file.string(), model.dimension());
     if (s.parameter < from || s.parameter > to) continue;
-    model.set_excess_angle(s.parameter);
+    ObjectiveAtParameter energy(model, s.parameter);
     EigenpairOptions options;
     options.count = count;
     // The trace's pins, unless the state has carried them off their lever arm (a pinned rim
@@ -167,7 +168,7 @@ int run(int argc, char** argv) {
         Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(s.x.data(), s.x.size() / 3, 3);
     const double condition = pinned_rigid_motion_condition(state_rows, pinned);
     const std::vector<Eigen::Index> pins = analysis_pins(model, s.x, pinned, kMaxPinCondition);
-    const Eigenpairs pairs = lowest_mass_normalized_eigenpairs(model, s.x, dof_mass, pins, options);
+    const Eigenpairs pairs = lowest_mass_normalized_eigenpairs(energy, s.x, dof_mass, pins, options);
     csv << s.parameter;
     std::printf("%9.5f", s.parameter);
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {

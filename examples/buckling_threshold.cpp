@@ -18,7 +18,6 @@
 #include "examples/support/command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/scene_command_line.hpp"
-#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -87,7 +86,6 @@ int run(int argc, char** argv) {
       const Eigen::MatrixX3d P =
           Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
       const auto pinned = rigid_motion_pinned_dofs(P, model.sheet_vertices());
-      ShellGrowthFamily family(model);
       ArclengthOptions o;
       o.initial_step = 1e-4 * (h / 0.02) * (h / 0.02) * 10;
       o.max_step = 5 * o.initial_step;  // small enough to separate neighbouring branch points
@@ -95,7 +93,7 @@ int run(int argc, char** argv) {
       o.gradient_tolerance = 1e-9 * model.natural_force_scale();
       o.special_point_tolerance = 1e-8;
       o.max_special_points = modes;
-      const BranchTrace trace = trace_branch(family, X, 0.0, +1, pinned, o);
+      const BranchTrace trace = trace_branch(model, X, 0.0, +1, pinned, o);
       int k = 0;
       for (const SpecialPoint& sp : trace.special_points) {
         ++k;

@@ -100,7 +100,6 @@ int run(int argc, char** argv) {
   for (const auto& file : files) {
     const BranchSample s = examples::load_point(file.string(), model.dimension());
     if (s.parameter < from) continue;
-    model.set_excess_angle(s.parameter);
     Row row;
     row.phi = s.parameter;
     for (const double b : bands) {

@@ -124,7 +124,7 @@ int run(int argc, char** argv) {
   std::printf("%8s %13s %13s %11s %6s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat", "iters",
               "folds");
   const auto on_point = [&](const GrowthPathPoint& p) {
-    const ShellEnergyBreakdown parts = model.energy_breakdown(p.x);
+    const ShellEnergyBreakdown parts = model.energy_breakdown(p.x, p.excess_angle);
     const int folds = analyze_rim_folds(model, p.x).folds;
     std::printf("%8.4f %13.6e %13.6e %11.6f %6d %5d%s\n", p.excess_angle, parts.stretching,
                 parts.bending, parts.normalized_bending(), p.newton_iterations, folds,
@@ -148,7 +148,7 @@ int run(int argc, char** argv) {
       log_iteration);
   const Eigen::VectorXd& x = path.last.x;
   if (!path.reached_target) {
-    write_vtu(out_dir + "/last_converged.vtu", shell_snapshot(model, x, 2));
+    write_vtu(out_dir + "/last_converged.vtu", shell_snapshot(model, x, path.last.excess_angle, 2));
     std::fprintf(stderr, "econe_at: error: %s; the last converged state (phi_e = %.6g) is in %s\n",
                  path.message.c_str(), path.last.excess_angle,
                  (out_dir + "/last_converged.vtu").c_str());
@@ -156,9 +156,9 @@ int run(int argc, char** argv) {
   }
   const double phi = path.last.excess_angle;
 
-  const ShellEnergyBreakdown parts = model.energy_breakdown(x);
+  const ShellEnergyBreakdown parts = model.energy_breakdown(x, phi);
   const RimFoldAnalysis rim = analyze_rim_folds(model, x);
-  write_vtu(out_dir + "/econe.vtu", shell_snapshot(model, x, 2));
+  write_vtu(out_dir + "/econe.vtu", shell_snapshot(model, x, phi, 2));
   std::printf("\nphi_e            %.6f\n", phi);
   std::printf("E_stretch        %.9e J\n", parts.stretching);
   std::printf("E_bend           %.9e J\n", parts.bending);

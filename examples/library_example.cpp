@@ -2,6 +2,7 @@
 // equilibrium found by Newton's method from the last. README.md shows this file in full.
 #include <cstdio>
 
+#include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/ring_disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
@@ -36,16 +37,17 @@ int main() {
   options.decrement_tolerance = 1e-6 * settings.material.youngs_modulus * h * h * h;
   NewtonSolver newton(options);
   for (int step = 1; step <= 10; ++step) {
-    model.set_excess_angle(0.1 * step);  // phi_e (rad)
-    const NewtonResult r = newton.minimize(model, x, pins);
+    const double phi_e = 0.1 * step;  // excess angle (rad)
+    ObjectiveAtParameter energy(model, phi_e);  // the sheet's energy at this phi_e
+    const NewtonResult r = newton.minimize(energy, x, pins);
     if (!r.converged()) {
-      std::printf("Newton failed at phi_e = %.1f: %s\n", 0.1 * step, r.message.c_str());
+      std::printf("Newton failed at phi_e = %.1f: %s\n", phi_e, r.message.c_str());
       return 1;
     }
     x = r.x;
-    const ShellEnergyBreakdown e = model.energy_breakdown(x);
+    const ShellEnergyBreakdown e = model.energy_breakdown(x, phi_e);
     std::printf("phi_e = %.1f  E_s = %.6e J  E_b = %.6e J  Eb_hat = %.6f 1/m^2  (%d iterations)\n",
-                0.1 * step, e.stretching, e.bending, e.normalized_bending(), r.iterations);
+                phi_e, e.stretching, e.bending, e.normalized_bending(), r.iterations);
   }
   return 0;
 }

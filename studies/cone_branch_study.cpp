@@ -14,7 +14,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/phase_condition_trace.hpp"
@@ -119,7 +118,6 @@ class ConeBranchRun {
   double h_ = 0.0;
   double contact_distance_ = 0.0;
   std::unique_ptr<ShellModel> model_;
-  std::unique_ptr<ShellGrowthFamily> family_;
   std::vector<Eigen::Index> pinned_;
   std::shared_ptr<const SymmetricSubspace> subspace_;
   std::unique_ptr<TurnFreeStabilityIndex> turn_free_index_;  ///< index_excludes_pattern_turn
@@ -199,9 +197,8 @@ void ConeBranchRun::set_up() {
   const Eigen::MatrixX3d P =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
-  family_ = std::make_unique<ShellGrowthFamily>(*model_);
   if (options_.index_excludes_pattern_turn)
-    turn_free_index_ = std::make_unique<TurnFreeStabilityIndex>(*family_, *model_, pinned_);
+    turn_free_index_ = std::make_unique<TurnFreeStabilityIndex>(*model_, *model_, pinned_);
   if (options_.symmetric_subspace) {
     ConeSubspaceChoice choice =
         cone_mirror_subspace(*model_, scene_.geometry.radius, scene_.continuation.mode);
@@ -362,8 +359,7 @@ void ConeBranchRun::on_event(const LocatedEvent& e) {
 
 void ConeBranchRun::snapshot(double phi, const Eigen::VectorXd& x, const std::string& name) {
   if (!scene_.output.write_vtk) return;
-  model_->set_excess_angle(phi);
-  record_->add_snapshot(phi, name, shell_snapshot(*model_, x, 2));
+  record_->add_snapshot(phi, name, shell_snapshot(*model_, x, phi, 2));
 }
 
 /// The stability index of a full cone state without the pattern's turn: the pinned Hessian's
@@ -379,8 +375,7 @@ double ConeBranchRun::phase_force(const BranchSample& s) {
   if (phase_functional_.size() != s.x.size() || branch_ != "cone")
     return std::numeric_limits<double>::quiet_NaN();
   Eigen::VectorXd g;
-  model_->set_excess_angle(s.parameter);
-  model_->evaluate(s.x, &g, nullptr);
+  model_->evaluate(s.x, s.parameter, &g, nullptr);
   return std::abs(phase_multiplier(g, phase_functional_, pinned_));
 }
 
@@ -397,15 +392,15 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
       return index_without_pattern_turn(s);
     };
   if (subspace_)
-    return trace_branch_in_subspace(*family_, *subspace_, x0, phi0, dx, dphi, pinned_, options,
+    return trace_branch_in_subspace(*model_, *subspace_, x0, phi0, dx, dphi, pinned_, options,
                                     sample, special, events_, event);
   if (options_.phase_condition) {
     const Eigen::VectorXd c = pattern_phase_functional(*model_, x0, dx, scene_.continuation.mode);
     phase_functional_ = c / c.norm();
-    return trace_branch_with_phase_condition(*family_, phase_functional_, x0, phi0, dx, dphi,
+    return trace_branch_with_phase_condition(*model_, phase_functional_, x0, phi0, dx, dphi,
                                              pinned_, options, sample, special, events_, event);
   }
-  return trace_branch_along(*family_, x0, phi0, dx, dphi, pinned_, options, sample, special,
+  return trace_branch_along(*model_, x0, phi0, dx, dphi, pinned_, options, sample, special,
                             events_, event);
 }
 
@@ -418,7 +413,7 @@ bool ConeBranchRun::trace_from_flat(BranchTrace& trace) {
   entry_options.thickness = h_;
   entry_options.radius = scene_.geometry.radius;
   const ConeBranchEntry entry =
-      enter_cone_branch(*family_, *model_, entry_options, pinned_, arclength_,
+      enter_cone_branch(*model_, *model_, entry_options, pinned_, arclength_,
                         [this](const SpecialPoint& sp) { on_special(sp); });
   flat_cost_ = entry.flat.cost;
   if (!entry.found) {

@@ -9,7 +9,7 @@
 
 namespace growshell {
 
-ConeSampleMeasurer::ConeSampleMeasurer(ShellModel& model, const ConeMeasureSettings& settings)
+ConeSampleMeasurer::ConeSampleMeasurer(const ShellModel& model, const ConeMeasureSettings& settings)
     : model_(model), settings_(settings) {
   gap_options_.exclusion_radius = settings.exclusion_radius;
   gap_options_.core_radius = settings.core_radius;
@@ -32,8 +32,7 @@ double ConeSampleMeasurer::signed_gap(const Eigen::VectorXd& x) {
 }
 
 double ConeSampleMeasurer::eb_hat(const Eigen::VectorXd& x, double phi_e) {
-  model_.set_excess_angle(phi_e);
-  return model_.energy_breakdown(x).normalized_bending();
+  return model_.energy_breakdown(x, phi_e).normalized_bending();
 }
 
 double ConeSampleMeasurer::eb_hat_slope(const BranchSample& s) {
@@ -46,8 +45,7 @@ double ConeSampleMeasurer::eb_hat_slope(const BranchSample& s) {
 
 ConeSampleMeasures ConeSampleMeasurer::measure(const BranchSample& s) {
   ConeSampleMeasures m;
-  model_.set_excess_angle(s.parameter);
-  const ShellEnergyBreakdown e = model_.energy_breakdown(s.x);
+  const ShellEnergyBreakdown e = model_.energy_breakdown(s.x, s.parameter);
   m.stretching = e.stretching;
   m.bending = e.bending;
   m.eb_hat = e.normalized_bending();
@@ -56,7 +54,7 @@ ConeSampleMeasures ConeSampleMeasurer::measure(const BranchSample& s) {
   m.folds = analyze_rim_folds(model_, s.x).folds;
   const Eigen::Vector3d center = model_.settings().growth.center;
   m.core_radius =
-      e.stretching > 0.0 ? stretching_core_radius(model_, s.x, 0.5, center).radius : 0.0;
+      e.stretching > 0.0 ? stretching_core_radius(model_, s.x, s.parameter, 0.5, center).radius : 0.0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   m.s4_defect = m.chord_up = m.chord_down = nan;
   if (settings_.measure_symmetry) {

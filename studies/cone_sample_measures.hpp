@@ -50,12 +50,12 @@ struct ConeSampleMeasures {
 
 /// Measures samples of a cone branch of `model`. The smallest gap of a state is computed once
 /// however many of the measures and event functions ask for it (the spatial search is the
-/// expensive part). Holds a reference to the model, whose excess angle it sets.
+/// expensive part). Holds a reference to the model.
 class ConeSampleMeasurer {
  public:
-  ConeSampleMeasurer(ShellModel& model, const ConeMeasureSettings& settings);
+  ConeSampleMeasurer(const ShellModel& model, const ConeMeasureSettings& settings);
 
-  /// All the measures of the sample (sets the model's excess angle to the sample's).
+  /// All the measures of the sample (at its excess angle).
   ConeSampleMeasures measure(const BranchSample& sample);
 
   /// Smallest gap (m) between non-neighbouring parts of the sheet at state x.
@@ -72,7 +72,7 @@ class ConeSampleMeasurer {
   double eb_hat_slope(const BranchSample& sample);
 
  private:
-  ShellModel& model_;
+  const ShellModel& model_;
   ConeMeasureSettings settings_;
   SelfDistanceOptions gap_options_;
   SelfIntersectionOptions crossing_options_;

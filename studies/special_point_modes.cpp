@@ -2,18 +2,19 @@
 
 #include <cmath>
 
+#include "core/objective_at_parameter.hpp"
 #include "studies/pattern_rotation.hpp"
 
 namespace growshell {
 
-SpecialPointModes special_point_modes(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+SpecialPointModes special_point_modes(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                                       double phi_e, const std::vector<Eigen::Index>& pinned,
                                       int count) {
-  model.set_excess_angle(phi_e);
+  ObjectiveAtParameter energy(model, phi_e);
   EigenpairOptions options;
   options.count = count;
   SpecialPointModes out;
-  out.pairs = lowest_eigenpairs(model, x, pinned, options);
+  out.pairs = lowest_eigenpairs(energy, x, pinned, options);
   const Eigen::VectorXd rotation = pattern_rotation(model, x, pinned);
   for (Eigen::Index k = 0; k < out.pairs.values.size(); ++k) {
     const Eigen::VectorXd v = out.pairs.vectors.col(k);

@@ -21,9 +21,9 @@ struct SpecialPointModes {
 };
 
 /// The `count` (>= 1) lowest eigenpairs of the Hessian of `model` at excess angle phi_e and
-/// state x with the `pinned` dofs removed, and their orientation overlaps. Sets the model's
-/// excess angle to phi_e. Throws as lowest_eigenpairs.
-SpecialPointModes special_point_modes(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+/// state x with the `pinned` dofs removed, and their orientation overlaps. Throws as
+/// lowest_eigenpairs.
+SpecialPointModes special_point_modes(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                                       double phi_e, const std::vector<Eigen::Index>& pinned,
                                       int count);
 

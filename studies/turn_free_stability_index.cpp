@@ -17,7 +17,7 @@ Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>> as_rows(
 
 }  // namespace
 
-TurnFreeStabilityIndex::TurnFreeStabilityIndex(ParametrizedObjective& family,
+TurnFreeStabilityIndex::TurnFreeStabilityIndex(const ParametrizedObjective& family,
                                                const ShellModel& model,
                                                std::vector<Eigen::Index> pins,
                                                double max_pin_condition)
@@ -44,8 +44,7 @@ int TurnFreeStabilityIndex::at(const Eigen::Ref<const Eigen::VectorXd>& x, doubl
     count_ = std::make_unique<HessianNegativeCount>(family_, pins);
     count_pins_ = pins;
   }
-  family_.set_parameter(phi_e);
-  const int full = count_->at(x);
+  const int full = count_->at(x, phi_e);
   const Eigen::VectorXd turn = pattern_rotation(model_, x, count_pins_);
   if (turn.lpNorm<Eigen::Infinity>() <= 1e-9 * size_) return full;
   return count_->negative_orthogonal_to(turn);

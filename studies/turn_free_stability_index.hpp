@@ -45,7 +45,7 @@ class TurnFreeStabilityIndex {
   /// the trace. `family` is the model's energy as a function of the excess angle; both it and
   /// `model` must outlive this object. Throws std::invalid_argument unless there are six pins
   /// and max_pin_condition >= 1 (as pinned_rigid_motion_condition measures it).
-  TurnFreeStabilityIndex(ParametrizedObjective& family, const ShellModel& model,
+  TurnFreeStabilityIndex(const ParametrizedObjective& family, const ShellModel& model,
                          std::vector<Eigen::Index> pins,
                          double max_pin_condition = kDefaultMaxPinCondition);
 
@@ -61,7 +61,7 @@ class TurnFreeStabilityIndex {
   const std::vector<Eigen::Index>& last_pins() const { return count_pins_; }
 
  private:
-  ParametrizedObjective& family_;
+  const ParametrizedObjective& family_;
   const ShellModel& model_;
   std::vector<Eigen::Index> pins_;
   double max_pin_condition_;

@@ -17,7 +17,8 @@ double element_reference_radius(const ShellModel& model, Eigen::Index e, const E
 }
 
 CoreRadius stretching_core_radius(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                  double fraction, const Eigen::Vector3d& center) {
+                                  double excess_angle, double fraction,
+                                  const Eigen::Vector3d& center) {
   if (!(fraction > 0.0 && fraction < 1.0))
     throw std::invalid_argument("stretching_core_radius: fraction = " + std::to_string(fraction) +
                                 " must be in (0, 1)");
@@ -27,7 +28,7 @@ CoreRadius stretching_core_radius(const ShellModel& model, const Eigen::Ref<cons
   std::vector<std::pair<double, double>> radius_energy(static_cast<std::size_t>(model.num_elements()));
   double total = 0.0;
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
-    const double energy = model.element_breakdown(x, e).stretching;
+    const double energy = model.element_breakdown(x, excess_angle, e).stretching;
     radius_energy[static_cast<std::size_t>(e)] = {element_reference_radius(model, e, center), energy};
     total += energy;
   }

@@ -25,8 +25,8 @@ struct CoreRadius {
 /// range-checked.
 double element_reference_radius(const ShellModel& model, Eigen::Index e, const Eigen::Vector3d& center);
 
-/// R_c of the state x (control points, vertex-major like ShellModel, metres) at the model's
-/// current excess angle: the radius about `center` (reference plane; only its x and y count)
+/// R_c of the state x (control points, vertex-major like ShellModel, metres) at the excess
+/// angle phi_e (radians): the radius about `center` (reference plane; only its x and y count)
 /// that encloses `fraction` of the stretching energy, element by element. Definition chosen
 /// because it needs no threshold on a density: for a flat disc relaxed under uniform
 /// circumferential growth (a wedge disclination in linear elasticity) the enclosed fraction
@@ -37,7 +37,7 @@ double element_reference_radius(const ShellModel& model, Eigen::Index e, const E
 /// Throws std::invalid_argument naming the argument if fraction is not in (0, 1), x does
 /// not have model.dimension() entries, or the stretching energy is zero (no core to measure).
 CoreRadius stretching_core_radius(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                  double fraction = 0.5,
+                                  double excess_angle, double fraction = 0.5,
                                   const Eigen::Vector3d& center = Eigen::Vector3d::Zero());
 
 }  // namespace growshell

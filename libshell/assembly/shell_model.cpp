@@ -105,14 +105,25 @@ const JetDerivatives<Eigen::Dynamic>& jet_derivatives<Eigen::Dynamic>(
   return reference.irregular_derivatives(e, q);
 }
 
+/// The grown metric of one element's quadrature points at one excess angle, from the parts
+/// that do not depend on it (a few flops per point, computed where the element needs them).
+struct ElementGrowth {
+  const TargetMetricParts* parts;  ///< the element's first quadrature point
+  double excess_angle;
+  Eigen::Matrix2d abar(int q) const { return target_metric(parts[q], excess_angle); }
+  Eigen::Matrix2d dabar(int q) const {
+    return target_metric_excess_angle_derivative(parts[q], excess_angle);
+  }
+};
+
 /// What evaluate() asks of one element.
 enum class Order { Energy, Gradient, Hessian };
 
 /// Energy of element e at x and, as `order` asks, its node forces G (n x 3) and Hessian H (3n x
 /// 3n, node-major), both overwritten. Nodes = 12 for a regular element, Dynamic otherwise.
 template <int Nodes>
-double element_terms(const ReferenceQuadrature& reference,
-                     const std::vector<Eigen::Matrix2d>& target_metric, const Material& material,
+double element_terms(const ReferenceQuadrature& reference, const ElementGrowth& growth,
+                     const Material& material,
                      const LoopPatch& patch, Eigen::Index e,
                      const Eigen::Ref<const Eigen::VectorXd>& x, Order order,
                      Eigen::Matrix<double, Nodes, 3>& G, ElementMatrix<Nodes>& H) {
@@ -127,8 +138,7 @@ double element_terms(const ReferenceQuadrature& reference,
     const Eigen::Index i = e * m + q;
     const JetDerivatives<Nodes>& B = jet_derivatives<Nodes>(reference, e, q);
     const SurfaceJet jet = surface_jet<Nodes>(B, X);
-    const ShellPointRest rest{target_metric[static_cast<std::size_t>(i)], reference.rule()[q].weight,
-                              reference.thickness(i)};
+    const ShellPointRest rest{growth.abar(q), reference.rule()[q].weight, reference.thickness(i)};
     if (order == Order::Hessian) {
       energy += shell_point_hessian(jet, rest, material, g_jet, H_jet);
       add_node_forces<Nodes>(B, g_jet, G);
@@ -173,8 +183,7 @@ void scatter_hessian(const LoopPatch& patch, const ElementMatrix<Nodes>& H,
 /// Energy parts of element e (see ShellModel::element_breakdown).
 template <int Nodes>
 ShellEnergyBreakdown element_parts(const ReferenceQuadrature& reference,
-                                   const std::vector<Eigen::Matrix2d>& target_metric,
-                                   const Material& material, const LoopPatch& patch,
+                                   const ElementGrowth& growth, const Material& material, const LoopPatch& patch,
                                    Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
   ShellEnergyBreakdown out;
   const int m = reference.points_per_element();
@@ -182,7 +191,7 @@ ShellEnergyBreakdown element_parts(const ReferenceQuadrature& reference,
   for (int q = 0; q < m; ++q) {
     const Eigen::Index i = e * m + q;
     const SurfaceJet jet = surface_jet<Nodes>(jet_derivatives<Nodes>(reference, e, q), X);
-    const Eigen::Matrix2d& abar = target_metric[static_cast<std::size_t>(i)];
+    const Eigen::Matrix2d abar = growth.abar(q);
     const ShellPointRest rest{abar, reference.rule()[q].weight, reference.thickness(i)};
     const ShellPointEnergy p = shell_point_energy(jet, rest, material);
     out.stretching += p.stretching;
@@ -198,9 +207,9 @@ ShellEnergyBreakdown element_parts(const ReferenceQuadrature& reference,
 /// d(gradient)/d(phi_e) of element e as node forces (n x 3).
 template <int Nodes>
 Eigen::Matrix<double, Nodes, 3> element_force_parameter_derivative(
-    const ReferenceQuadrature& reference, const std::vector<Eigen::Matrix2d>& target_metric,
-    const ShellModelSettings& settings, double excess_angle, const LoopPatch& patch,
-    Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
+    const ReferenceQuadrature& reference, const ElementGrowth& growth,
+    const ShellModelSettings& settings, const LoopPatch& patch, Eigen::Index e,
+    const Eigen::Ref<const Eigen::VectorXd>& x) {
   const int m = reference.points_per_element();
   const Eigen::Matrix<double, Nodes, 3> X = element_nodes<Nodes>(x, patch);
   Eigen::Matrix<double, Nodes, 3> G = Eigen::Matrix<double, Nodes, 3>::Zero(patch.size(), 3);
@@ -208,10 +217,8 @@ Eigen::Matrix<double, Nodes, 3> element_force_parameter_derivative(
     const Eigen::Index i = e * m + q;
     const JetDerivatives<Nodes>& B = jet_derivatives<Nodes>(reference, e, q);
     const SurfaceJet jet = surface_jet<Nodes>(B, X);
-    const ShellPointRest rest{target_metric[static_cast<std::size_t>(i)], reference.rule()[q].weight,
-                              reference.thickness(i)};
-    const Eigen::Matrix2d dabar = target_metric_excess_angle_derivative(
-        settings.growth, reference.position(i), reference.tangents(i), excess_angle);
+    const ShellPointRest rest{growth.abar(q), reference.rule()[q].weight, reference.thickness(i)};
+    const Eigen::Matrix2d dabar = growth.dabar(q);
     add_node_forces<Nodes>(
         B, shell_point_gradient_parameter_derivative(jet, rest, settings.material, dabar), G);
   }
@@ -241,40 +248,48 @@ ShellModel::ShellModel(const TriangleMesh& reference_control_mesh, ShellModelSet
   for (int v = 0; v < topology_.num_vertices(); ++v)
     if (is_corner[v]) sheet_vertices_.push_back(v);
   pattern_ = upper_block_pattern(topology_.num_vertices(), patch_controls(patches_));
-  set_excess_angle(0.0);
+  growth_parts_.resize(static_cast<std::size_t>(reference_.size()));
+  for (Eigen::Index i = 0; i < reference_.size(); ++i)
+    growth_parts_[static_cast<std::size_t>(i)] =
+        target_metric_parts(settings_.growth, reference_.position(i), reference_.tangents(i));
 }
 
-void ShellModel::set_excess_angle(double excess_angle) {
-  if (!std::isfinite(excess_angle) || circumferential_stretch(excess_angle) <= 0.0)
-    throw std::invalid_argument("excess angle phi_e must be finite and > -2 pi");
-  excess_angle_ = excess_angle;
-  target_metric_.resize(reference_.size());
-  for (Eigen::Index i = 0; i < reference_.size(); ++i)
-    target_metric_[i] = target_metric(settings_.growth, reference_.position(i),
-                                      reference_.tangents(i), excess_angle_);
+bool ShellModel::accepts_parameter(double excess_angle) const {
+  return std::isfinite(excess_angle) && circumferential_stretch(excess_angle) > 0.0;
+}
+
+void ShellModel::check_excess_angle(double excess_angle) const {
+  if (!accepts_parameter(excess_angle))
+    throw std::invalid_argument("excess angle phi_e must be finite and > -2 pi, got " +
+                                std::to_string(excess_angle));
 }
 
 int ShellModel::thread_count() const {
   return settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
 }
 
-double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double excess_angle,
                             Eigen::VectorXd* gradient,
-                            Eigen::SparseMatrix<double>* hessian_upper) {
+                            Eigen::SparseMatrix<double>* hessian_upper) const {
   if (x.size() != dimension())
     throw std::invalid_argument("ShellModel::evaluate: x has size " + std::to_string(x.size()) +
                                 ", expected " + std::to_string(dimension()));
   if (hessian_upper && hessian_upper->nonZeros() != pattern_.nonZeros())
     throw std::invalid_argument("ShellModel::evaluate: Hessian does not carry the model's pattern");
+  check_excess_angle(excess_angle);
+  const int m = reference_.points_per_element();
   const int threads = thread_count();
   const Eigen::Index n_el = num_elements();
-  if (gradient) {
-    thread_gradient_.resize(threads);
-    for (auto& g : thread_gradient_) g.setZero(dimension());
-  }
-  if (hessian_upper) {
-    thread_values_.resize(threads);
-    for (auto& h : thread_values_) h.setZero(pattern_.nonZeros());
+  // Thread 0 scatters into the outputs, the others into buffers of their own, added in thread
+  // order at the end (deterministic for a given thread count).
+  if (gradient) gradient->setZero(dimension());
+  if (hessian_upper)
+    std::fill(hessian_upper->valuePtr(), hessian_upper->valuePtr() + pattern_.nonZeros(), 0.0);
+  std::vector<Eigen::VectorXd> thread_gradient(gradient ? threads : 0);
+  std::vector<Eigen::VectorXd> thread_values(hessian_upper ? threads : 0);
+  for (int t = 1; t < threads; ++t) {
+    if (gradient) thread_gradient[t].setZero(dimension());
+    if (hessian_upper) thread_values[t].setZero(pattern_.nonZeros());
   }
   const Order order = hessian_upper ? Order::Hessian : gradient ? Order::Gradient : Order::Energy;
   std::vector<double> thread_energy(threads, 0.0);
@@ -282,6 +297,10 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
+    Eigen::VectorXd* g_t = !gradient ? nullptr : t == 0 ? gradient : &thread_gradient[t];
+    double* h_t = !hessian_upper         ? nullptr
+                  : t == 0               ? hessian_upper->valuePtr()
+                                         : thread_values[t].data();
     double energy = 0.0;
     Eigen::Matrix<double, 12, 3> G12;
     ElementMatrix<12> H12;
@@ -291,16 +310,17 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
     for (Eigen::Index e = 0; e < n_el; ++e) {
       const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
       if (reference_.is_regular(e)) {
-        energy += element_terms<12>(reference_, target_metric_, settings_.material, patch, e, x,
-                                    order, G12, H12);
-        if (gradient) scatter_forces<12>(patch, G12, thread_gradient_[t]);
-        if (hessian_upper) scatter_hessian<12>(patch, H12, pattern_, thread_values_[t].data());
+        const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
+        energy += element_terms<12>(reference_, growth, settings_.material, patch, e, x, order,
+                                    G12, H12);
+        if (g_t) scatter_forces<12>(patch, G12, *g_t);
+        if (h_t) scatter_hessian<12>(patch, H12, pattern_, h_t);
       } else {
-        energy += element_terms<Eigen::Dynamic>(reference_, target_metric_, settings_.material,
-                                                patch, e, x, order, G, H);
-        if (gradient) scatter_forces<Eigen::Dynamic>(patch, G, thread_gradient_[t]);
-        if (hessian_upper)
-          scatter_hessian<Eigen::Dynamic>(patch, H, pattern_, thread_values_[t].data());
+        const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
+        energy += element_terms<Eigen::Dynamic>(reference_, growth, settings_.material, patch, e,
+                                                x, order, G, H);
+        if (g_t) scatter_forces<Eigen::Dynamic>(patch, G, *g_t);
+        if (h_t) scatter_hessian<Eigen::Dynamic>(patch, H, pattern_, h_t);
       }
     }
     thread_energy[t] = energy;
@@ -308,31 +328,31 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
 
   double energy = 0.0;
   for (double part : thread_energy) energy += part;
-  if (gradient) {
-    *gradient = thread_gradient_[0];
-    for (int t = 1; t < threads; ++t) *gradient += thread_gradient_[t];
-  }
-  if (hessian_upper) {
-    Eigen::Map<Eigen::VectorXd> values(hessian_upper->valuePtr(), hessian_upper->nonZeros());
-    values = thread_values_[0];
-    for (int t = 1; t < threads; ++t) values += thread_values_[t];
+  for (int t = 1; t < threads; ++t) {
+    if (gradient) *gradient += thread_gradient[t];
+    if (hessian_upper)
+      Eigen::Map<Eigen::VectorXd>(hessian_upper->valuePtr(), hessian_upper->nonZeros()) +=
+          thread_values[t];
   }
   return energy;
 }
 
 ShellEnergyBreakdown ShellModel::element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                                  Eigen::Index e) const {
+                                                  double excess_angle, Eigen::Index e) const {
+  const int m = reference_.points_per_element();
+  check_excess_angle(excess_angle);
+  const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
   const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
   return reference_.is_regular(e)
-             ? element_parts<12>(reference_, target_metric_, settings_.material, patch, e, x)
-             : element_parts<Eigen::Dynamic>(reference_, target_metric_, settings_.material,
-                                             patch, e, x);
+             ? element_parts<12>(reference_, growth, settings_.material, patch, e, x)
+             : element_parts<Eigen::Dynamic>(reference_, growth, settings_.material, patch, e, x);
 }
 
-ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                 double excess_angle) const {
   ShellEnergyBreakdown out;
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    const ShellEnergyBreakdown b = element_breakdown(x, excess_angle, e);
     out.stretching += b.stretching;
     out.bending += b.bending;
     out.bending_density_integral += b.bending_density_integral;
@@ -343,40 +363,48 @@ ShellEnergyBreakdown ShellModel::energy_breakdown(const Eigen::Ref<const Eigen::
   return out;
 }
 
-Eigen::VectorXd ShellModel::gradient_excess_angle_derivative(
-    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd ShellModel::gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                          double excess_angle) const {
+  if (x.size() != dimension())
+    throw std::invalid_argument("ShellModel::gradient_parameter_derivative: x has size " +
+                                std::to_string(x.size()) + ", expected " +
+                                std::to_string(dimension()));
+  check_excess_angle(excess_angle);
+  const int m = reference_.points_per_element();
   Eigen::VectorXd out = Eigen::VectorXd::Zero(dimension());
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
     const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
+    const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
     if (reference_.is_regular(e))
       scatter_forces<12>(patch,
-                         element_force_parameter_derivative<12>(
-                             reference_, target_metric_, settings_, excess_angle_, patch, e, x),
+                         element_force_parameter_derivative<12>(reference_, growth, settings_,
+                                                                patch, e, x),
                          out);
     else
       scatter_forces<Eigen::Dynamic>(
           patch,
-          element_force_parameter_derivative<Eigen::Dynamic>(reference_, target_metric_,
-                                                             settings_, excess_angle_, patch, e, x),
+          element_force_parameter_derivative<Eigen::Dynamic>(reference_, growth, settings_, patch,
+                                                             e, x),
           out);
   }
   return out;
 }
 
-Eigen::VectorXd ShellModel::element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd ShellModel::element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                    double excess_angle) const {
   Eigen::VectorXd out(num_elements());
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    const ShellEnergyBreakdown b = element_breakdown(x, excess_angle, e);
     out(e) = b.bending_density_integral / b.grown_area;
   }
   return out;
 }
 
-Eigen::VectorXd ShellModel::element_stretching_density(
-    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+Eigen::VectorXd ShellModel::element_stretching_density(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                       double excess_angle) const {
   Eigen::VectorXd out(num_elements());
   for (Eigen::Index e = 0; e < num_elements(); ++e) {
-    const ShellEnergyBreakdown b = element_breakdown(x, e);
+    const ShellEnergyBreakdown b = element_breakdown(x, excess_angle, e);
     out(e) = b.stretching_density_integral / b.grown_area;
   }
   return out;

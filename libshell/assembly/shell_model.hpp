@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/sparse_objective.hpp"
+#include "core/parametrized_objective.hpp"
 #include "libshell/assembly/reference_quadrature.hpp"
 #include "libshell/energy/circumferential_growth.hpp"
 #include "libshell/energy/material.hpp"
@@ -45,40 +45,48 @@ struct ShellEnergyBreakdown {
   double normalized_bending() const { return bending_density_integral / current_area; }
 };
 
-/// Energy E(x; phi_e) of the sheet. Unknowns x: all control points, vertex-major
-/// (x[3 v + c], metres), ghost layer included. The reference (stress-free, ungrown) state is
-/// the limit surface of the control mesh given at construction; it is never modified.
-class ShellModel final : public SparseObjective {
+/// Energy E(x; phi_e) of the sheet, as a family in the excess angle phi_e (radians). Unknowns x:
+/// all control points, vertex-major (x[3 v + c], metres), ghost layer included. The reference
+/// (stress-free, ungrown) state is the limit surface of the control mesh given at construction;
+/// it is never modified. phi_e is an argument of every evaluation; the model holds no growth
+/// state, and all its evaluations are const (safe to call from several threads at once, each
+/// call using the model's `threads` for its own assembly).
+class ShellModel final : public ParametrizedObjective {
  public:
   /// Validates the mesh (see validate_control_mesh), the material and the thickness and
   /// builds the Hessian pattern. Throws MeshError or std::invalid_argument naming the problem.
   ShellModel(const TriangleMesh& reference_control_mesh, ShellModelSettings settings);
 
-  /// Sets the excess angle phi_e (radians) of the growth law; recomputes target metrics.
-  void set_excess_angle(double excess_angle);
-  double excess_angle() const { return excess_angle_; }
-
   Eigen::Index dimension() const override { return 3 * topology_.num_vertices(); }
   Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
-                  Eigen::SparseMatrix<double>* hessian_upper) override;
+  /// E(x; phi_e) (J), with gradient (N) and Hessian upper triangle (N/m) on request. Throws
+  /// std::invalid_argument for an x of the wrong size, a Hessian without the model's pattern, or
+  /// an excess angle that is not finite or not > -2 pi.
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double excess_angle,
+                  Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) const override;
+  /// Whether phi_e is finite and > -2 pi (a positive circumferential stretch).
+  bool accepts_parameter(double excess_angle) const override;
+  /// d(gradient)/d(phi_e) at x (N/rad), exact; throws as evaluate.
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                double excess_angle) const override;
 
-  /// Stretching and bending energy, E_b-hat ingredients and areas at x.
-  ShellEnergyBreakdown energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-
-  /// d(gradient)/d(phi_e) at x (N/rad), exact.
-  Eigen::VectorXd gradient_excess_angle_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// Stretching and bending energy, E_b-hat ingredients and areas at (x, phi_e).
+  ShellEnergyBreakdown energy_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        double excess_angle) const;
 
   /// Mean bending energy density U_b of each element (1/m^2), weighted by grown area.
-  Eigen::VectorXd element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  Eigen::VectorXd element_bending_density(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                          double excess_angle) const;
 
   /// Mean stretching energy density U_s of each element (dimensionless strain squared).
-  Eigen::VectorXd element_stretching_density(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  Eigen::VectorXd element_stretching_density(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                             double excess_angle) const;
 
-  /// Energy parts of element e alone at x (its share of energy_breakdown), 0 <= e <
+  /// Energy parts of element e alone at (x, phi_e) (its share of energy_breakdown), 0 <= e <
   /// num_elements(); e is not range-checked.
   ShellEnergyBreakdown element_breakdown(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                         Eigen::Index e) const;
+                                         double excess_angle, Eigen::Index e) const;
 
   /// Limit-surface positions (metres) of the element corner vertices, in the order of
   /// sheet_vertices().
@@ -104,6 +112,8 @@ class ShellModel final : public SparseObjective {
 
  private:
   int thread_count() const;
+  /// Throws std::invalid_argument naming phi_e unless accepts_parameter(phi_e).
+  void check_excess_angle(double excess_angle) const;
 
   ShellModelSettings settings_;
   MeshTopology topology_;
@@ -111,14 +121,10 @@ class ShellModel final : public SparseObjective {
   Eigen::VectorXd reference_x_;
   ReferenceQuadrature reference_;
   std::vector<int> sheet_vertices_;
-  double excess_angle_ = 0.0;
-  std::vector<Eigen::Matrix2d> target_metric_;  // per quadrature point, at excess_angle_
+  std::vector<TargetMetricParts> growth_parts_;  // per quadrature point: abar without phi_e
   Eigen::SparseMatrix<double> pattern_;
   struct LatticeSamplingCache;
   std::shared_ptr<LatticeSamplingCache> lattice_sampling_;
-  // Per-thread scatter buffers, reused across evaluations (no allocation per iteration).
-  std::vector<Eigen::VectorXd> thread_gradient_;
-  std::vector<Eigen::VectorXd> thread_values_;
 };
 
 }  // namespace growshell

@@ -134,7 +134,7 @@ double ContactPenalty::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 // ---- PenalizedEnergy -----------------------------------------------------------------------
 
-PenalizedEnergy::PenalizedEnergy(ShellModel& model, ContactPenalty& penalty)
+PenalizedEnergy::PenalizedEnergy(const ShellModel& model, ContactPenalty& penalty)
     : model_(model), penalty_(penalty) {
   const Eigen::Index n = model.dimension();
   if (penalty.dimension() != n) {
@@ -143,14 +143,12 @@ PenalizedEnergy::PenalizedEnergy(ShellModel& model, ContactPenalty& penalty)
       << penalty.dimension();
     throw std::invalid_argument(s.str());
   }
-  energy_hessian_ = model.hessian_pattern();
-  penalty_hessian_ = penalty.hessian_pattern();
-  check_upper_pattern(energy_hessian_, n, "energy");
-  check_upper_pattern(penalty_hessian_, n, "penalty");
+  const Eigen::SparseMatrix<double> A = model.hessian_pattern();
+  const Eigen::SparseMatrix<double> B = penalty.hessian_pattern();
+  check_upper_pattern(A, n, "energy");
+  check_upper_pattern(B, n, "penalty");
 
   // Merge column by column (both sorted), recording where every source entry lands.
-  const Eigen::SparseMatrix<double>& A = energy_hessian_;
-  const Eigen::SparseMatrix<double>& B = penalty_hessian_;
   std::vector<int> outer(1, 0);
   std::vector<int> inner;
   inner.reserve(static_cast<std::size_t>(A.nonZeros() + B.nonZeros()));
@@ -177,9 +175,9 @@ PenalizedEnergy::PenalizedEnergy(ShellModel& model, ContactPenalty& penalty)
       n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), zeros.data());
 }
 
-double PenalizedEnergy::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
+double PenalizedEnergy::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double excess_angle,
                                  Eigen::VectorXd* gradient,
-                                 Eigen::SparseMatrix<double>* hessian_upper) {
+                                 Eigen::SparseMatrix<double>* hessian_upper) const {
   if (hessian_upper != nullptr) {
     bool ok = hessian_upper->rows() == pattern_.rows() &&
               hessian_upper->cols() == pattern_.cols() && hessian_upper->isCompressed() &&
@@ -195,23 +193,25 @@ double PenalizedEnergy::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
       throw std::invalid_argument(s.str());
     }
   }
-  Eigen::VectorXd* energy_gradient = gradient != nullptr ? &energy_gradient_ : nullptr;
-  Eigen::SparseMatrix<double>* energy_hessian =
-      hessian_upper != nullptr ? &energy_hessian_ : nullptr;
-  const double e = model_.evaluate(x, energy_gradient, energy_hessian);
-  last_penalty_ = 0.0;
+  Eigen::VectorXd energy_gradient, penalty_gradient;
+  Eigen::SparseMatrix<double> energy_hessian, penalty_hessian;
+  if (hessian_upper != nullptr) {
+    energy_hessian = model_.hessian_pattern();
+    penalty_hessian = penalty_.hessian_pattern();
+  }
+  const double e = model_.evaluate(x, excess_angle, gradient != nullptr ? &energy_gradient : nullptr,
+                                   hessian_upper != nullptr ? &energy_hessian : nullptr);
   if (!std::isfinite(e)) return e;
-  const double p = penalty_.evaluate(x, gradient != nullptr ? &penalty_gradient_ : nullptr,
-                                     hessian_upper != nullptr ? &penalty_hessian_ : nullptr);
-  last_penalty_ = p;
-  if (gradient != nullptr) *gradient = energy_gradient_ + penalty_gradient_;
+  const double p = penalty_.evaluate(x, gradient != nullptr ? &penalty_gradient : nullptr,
+                                     hessian_upper != nullptr ? &penalty_hessian : nullptr);
+  if (gradient != nullptr) *gradient = energy_gradient + penalty_gradient;
   if (hessian_upper != nullptr) {
     double* values = hessian_upper->valuePtr();
     std::fill(values, values + hessian_upper->nonZeros(), 0.0);
-    const double* ev = energy_hessian_.valuePtr();
+    const double* ev = energy_hessian.valuePtr();
     for (std::size_t i = 0; i < energy_to_merged_.size(); ++i)
       values[energy_to_merged_[i]] += ev[i];
-    const double* pv = penalty_hessian_.valuePtr();
+    const double* pv = penalty_hessian.valuePtr();
     for (std::size_t i = 0; i < penalty_to_merged_.size(); ++i)
       values[penalty_to_merged_[i]] += pv[i];
   }

@@ -90,60 +90,49 @@ class ContactPenalty final : public SparseObjective {
   double stiffness_ = 0.0;
 };
 
-/// Shell + penalty, the one adaptor of the two: E(x; phi_e) + P(x) for a ShellModel E (at its
-/// excess angle phi_e) and a ContactPenalty P of the same dimension, with the merged (union)
-/// Hessian pattern. As a SparseObjective it is what NewtonSolver minimises and the stability
-/// layer factorises; as a ParametrizedObjective in phi_e it is the family that
-/// pseudo-arclength continuation follows through contact (P does not depend on phi_e, so
-/// d(gradient)/d(phi_e) is the shell's). The Hessian pattern is fixed for the adaptor's
-/// lifetime, i.e. for one pair set. Holds references: both objects must outlive the adaptor.
-/// Changes to them that keep their patterns (growth angle, stiffness) take effect at the next
-/// evaluate.
+/// Shell + penalty, the one adaptor of the two: E(x; phi_e) + P(x) for a ShellModel E and a
+/// ContactPenalty P of the same dimension, with the merged (union) Hessian pattern. As a
+/// ParametrizedObjective in phi_e it is the family that pseudo-arclength continuation follows
+/// through contact, and, at one phi_e (ObjectiveAtParameter), what NewtonSolver minimises and
+/// the stability layer factorises (P does not depend on phi_e, so d(gradient)/d(phi_e) is the
+/// shell's). The Hessian pattern is fixed for the adaptor's lifetime, i.e. for one pair set.
+/// Holds references: both objects must outlive the adaptor. A change of the penalty that keeps
+/// its pattern (its stiffness) takes effect at the next evaluate.
 class PenalizedEnergy final : public ParametrizedObjective {
  public:
   /// Throws std::invalid_argument if the dimensions differ or a pattern is not a compressed
   /// n x n upper triangle.
-  PenalizedEnergy(ShellModel& model, ContactPenalty& penalty);
+  PenalizedEnergy(const ShellModel& model, ContactPenalty& penalty);
 
   Eigen::Index dimension() const override { return model_.dimension(); }
   /// Union of the two upper-triangular patterns.
   Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
 
-  /// E(x) + P(x), with summed gradient and Hessian on request. If E(x) is not finite it is
+  /// E(x; phi_e) + P(x), with summed gradient and Hessian on request. If E is not finite it is
   /// returned as is (the outside-the-domain signal of SparseObjective) without evaluating P.
   /// Throws std::invalid_argument if the Hessian does not carry hessian_pattern(), and
   /// whatever E and P throw.
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
-                  Eigen::SparseMatrix<double>* hessian_upper) override;
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double excess_angle,
+                  Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) const override;
 
-  /// Sets the shell's excess angle phi_e (radians).
-  void set_parameter(double lambda) override { model_.set_excess_angle(lambda); }
-  double parameter() const override { return model_.excess_angle(); }
+  bool accepts_parameter(double lambda) const override { return model_.accepts_parameter(lambda); }
   /// d(gradient)/d(phi_e) at x: the shell's (P does not depend on phi_e).
-  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x) override {
-    return model_.gradient_excess_angle_derivative(x);
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                double excess_angle) const override {
+    return model_.gradient_parameter_derivative(x, excess_angle);
   }
 
-  /// P at the last evaluate() (J), 0 before the first or after a non-finite E; for reporting
-  /// how much of the total energy is contact.
-  double last_penalty() const { return last_penalty_; }
-
-  ShellModel& model() { return model_; }
-  ContactPenalty& penalty() { return penalty_; }
+  const ShellModel& model() const { return model_; }
+  ContactPenalty& penalty() const { return penalty_; }
 
  private:
-  ShellModel& model_;
+  const ShellModel& model_;
   ContactPenalty& penalty_;
   Eigen::SparseMatrix<double> pattern_;
   // Position in pattern_'s value array of every stored entry of each part's pattern.
   std::vector<Eigen::Index> energy_to_merged_;
   std::vector<Eigen::Index> penalty_to_merged_;
-  // Reused buffers (no allocation per evaluation).
-  Eigen::SparseMatrix<double> energy_hessian_;
-  Eigen::SparseMatrix<double> penalty_hessian_;
-  Eigen::VectorXd energy_gradient_;
-  Eigen::VectorXd penalty_gradient_;
-  double last_penalty_ = 0.0;
 };
 
 }  // namespace growshell

@@ -44,20 +44,22 @@ double excess_angle_weight(const CircumferentialGrowth& growth, double r) {
   return r * r / (r * r + eps * eps);
 }
 
+TargetMetricParts target_metric_parts(const CircumferentialGrowth& growth, const Eigen::Vector3d& X,
+                                      const Eigen::Matrix<double, 3, 2>& A) {
+  const CircumferentialDirection d = circumferential_direction(growth, X, A);
+  return {A.transpose() * A, d.t, d.weight};
+}
+
 Eigen::Matrix2d target_metric(const CircumferentialGrowth& growth, const Eigen::Vector3d& X,
                               const Eigen::Matrix<double, 3, 2>& A, double excess_angle) {
-  const CircumferentialDirection d = circumferential_direction(growth, X, A);
-  const double lambda = circumferential_stretch(d.weight * excess_angle);
-  return A.transpose() * A + (lambda * lambda - 1.0) * d.t * d.t.transpose();
+  return target_metric(target_metric_parts(growth, X, A), excess_angle);
 }
 
 Eigen::Matrix2d target_metric_excess_angle_derivative(const CircumferentialGrowth& growth,
                                                       const Eigen::Vector3d& X,
                                                       const Eigen::Matrix<double, 3, 2>& A,
                                                       double excess_angle) {
-  const CircumferentialDirection d = circumferential_direction(growth, X, A);
-  const double lambda = circumferential_stretch(d.weight * excess_angle);
-  return (lambda * d.weight / std::numbers::pi) * d.t * d.t.transpose();
+  return target_metric_excess_angle_derivative(target_metric_parts(growth, X, A), excess_angle);
 }
 
 }  // namespace growshell

@@ -3,6 +3,7 @@
 /// Circumferential growth about an axis: the growth tensor G(phi_e) and the target metric.
 
 #include <Eigen/Core>
+#include <numbers>
 
 namespace growshell {
 
@@ -37,6 +38,36 @@ double circumferential_stretch(double excess_angle);
 /// Weight w(r) of the excess angle at distance r (m) from the centre, of the growth's
 /// smoothing profile; 1 for epsilon = 0.
 double excess_angle_weight(const CircumferentialGrowth& growth, double r);
+
+/// What the target metric at one reference point is made of, apart from phi_e: the reference
+/// metric A^T A, the covariant components t_a = e_phi . A_a of the circumferential unit vector
+/// (zero on the axis, where the growth is undefined) and the weight w(r) of the excess angle.
+struct TargetMetricParts {
+  Eigen::Matrix2d reference_metric = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d circumferential = Eigen::Vector2d::Zero();
+  double weight = 0.0;
+};
+
+/// The parts at reference point X with reference tangents A (as target_metric).
+TargetMetricParts target_metric_parts(const CircumferentialGrowth& growth, const Eigen::Vector3d& X,
+                                      const Eigen::Matrix<double, 3, 2>& A);
+
+/// abar = A^T A + (lambda^2 - 1) t t^T, lambda = 1 + w phi_e / (2 pi), from the parts: a few
+/// flops (inline: assembly calls it at every quadrature point), bit for bit what
+/// target_metric returns at the same point.
+inline Eigen::Matrix2d target_metric(const TargetMetricParts& parts, double excess_angle) {
+  const double lambda = 1.0 + parts.weight * excess_angle / (2.0 * std::numbers::pi);
+  return parts.reference_metric +
+         (lambda * lambda - 1.0) * parts.circumferential * parts.circumferential.transpose();
+}
+
+/// d abar / d phi_e = (lambda w / pi) t t^T from the parts.
+inline Eigen::Matrix2d target_metric_excess_angle_derivative(const TargetMetricParts& parts,
+                                                             double excess_angle) {
+  const double lambda = 1.0 + parts.weight * excess_angle / (2.0 * std::numbers::pi);
+  return (lambda * parts.weight / std::numbers::pi) * parts.circumferential *
+         parts.circumferential.transpose();
+}
 
 /// Target (grown) metric abar_ab = (G A_a) . (G A_b) at reference point X with reference
 /// tangents A = [A_1 A_2] (covariant basis of the parameter coordinates, metres):

@@ -8,11 +8,11 @@
 namespace growshell {
 
 SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                               int refinement) {
+                               double excess_angle, int refinement) {
   if (refinement < 1) throw std::invalid_argument("snapshot refinement must be >= 1");
   const Eigen::Index n_el = model.num_elements();
-  const Eigen::VectorXd Ub = model.element_bending_density(x);
-  const Eigen::VectorXd Us = model.element_stretching_density(x);
+  const Eigen::VectorXd Ub = model.element_bending_density(x, excess_angle);
+  const Eigen::VectorXd Us = model.element_stretching_density(x, excess_angle);
   const int r = refinement;
   const Eigen::Index sub = static_cast<Eigen::Index>(r) * r;
   SurfaceSnapshot s;

@@ -49,14 +49,13 @@ void validate(const ContactBranchOptions& o) {
 }
 
 /// The sample's description with the penalty of its segment.
-ContactBranchSample describe(ShellModel& model, ContactPenalty* penalty, const BranchSample& sample,
+ContactBranchSample describe(const ShellModel& model, ContactPenalty* penalty, const BranchSample& sample,
                              const ContactCandidates& pairs, const ContactProxy& proxy,
                              const ContactBranchOptions& options) {
   ContactBranchSample out;
   out.sample = sample;
   out.pairs = pairs;
-  model.set_excess_angle(sample.parameter);
-  const ShellEnergyBreakdown e = model.energy_breakdown(sample.x);
+  const ShellEnergyBreakdown e = model.energy_breakdown(sample.x, sample.parameter);
   out.stretching_energy = e.stretching;
   out.bending_energy = e.bending;
   out.current_area = e.current_area;
@@ -117,7 +116,7 @@ std::vector<Eigen::Index> rigid_pins_for_state(const ShellModel& model,
       pins, model.sheet_vertices(), options.repin_above_condition);
 }
 
-ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,
+ContactBranchSample describe_contact_sample(const ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const ContactCandidates& pairs,
                                             const ContactBranchOptions& options) {
@@ -126,7 +125,7 @@ ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProx
 }
 
 ContactBranchTrace trace_contact_branch(
-    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
     double direction_parameter, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactBranchOptions& options,
@@ -296,7 +295,6 @@ ContactBranchTrace trace_contact_branch(
     out.message = "reached max_steps";
     out.reached_bound = true;
   }
-  model.set_excess_angle(out.last.sample.parameter);
   return out;
 }
 

@@ -118,11 +118,10 @@ struct ContactBranchTrace {
 /// self-contact on `proxy`, in the direction (direction_state, direction_parameter) (e.g. the
 /// tangent of a saved sample, or (0, +1) for increasing phi_e), holding `fixed_dofs`. Each
 /// converged sample (the corrected start first) goes to on_sample as soon as it converges;
-/// special points (changes of the negative count) and events as in trace_branch_along. The
-/// model's excess angle is left at the last sample's. Throws std::invalid_argument for bad
+/// special points (changes of the negative count) and events as in trace_branch_along. Throws std::invalid_argument for bad
 /// options (naming the field).
 ContactBranchTrace trace_contact_branch(
-    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
     double direction_parameter, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactBranchOptions& options,
@@ -143,8 +142,8 @@ std::vector<Eigen::Index> rigid_pins_for_state(const ShellModel& model,
                                                const ContactBranchOptions& options);
 
 /// The energies, slope, area and penalty forces of `sample` on the pair set `pairs` (as
-/// trace_contact_branch reports them); the model's excess angle is set to the sample's.
-ContactBranchSample describe_contact_sample(ShellModel& model, const ContactProxy& proxy,
+/// trace_contact_branch reports them), at the sample's excess angle.
+ContactBranchSample describe_contact_sample(const ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const ContactCandidates& pairs,
                                             const ContactBranchOptions& options);

@@ -1,5 +1,7 @@
 #include "solvers/contact/contact_equilibrium.hpp"
 
+#include "core/objective_at_parameter.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -27,7 +29,8 @@ std::map<std::tuple<int, int, int>, double> force_by_pair(const ContactSolveResu
 
 }  // namespace
 
-ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactProxy& proxy,
+ContactSolveResult solve_contact_equilibrium(const ShellModel& model, double excess_angle,
+                                             const ContactProxy& proxy,
                                              const Eigen::Ref<const Eigen::VectorXd>& x0,
                                              const std::vector<Eigen::Index>& fixed_dofs,
                                              const ContactSolveOptions& options,
@@ -43,6 +46,7 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
   if (options.max_rounds < 1) throw std::invalid_argument("ContactSolveOptions: max_rounds must be >= 1");
   if (!(std::isfinite(options.violation_tolerance) && options.violation_tolerance >= 0.0))
     throw std::invalid_argument("ContactSolveOptions: violation_tolerance must be finite and >= 0");
+  ObjectiveAtParameter energy(model, excess_angle);
   if (x0.size() != model.dimension())
     throw std::invalid_argument("solve_contact_equilibrium: x0 has the wrong size");
 
@@ -62,7 +66,7 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
     Eigen::VectorXd x;
     if (pairs.empty()) {
       // Nothing near: plain Newton, no contact cost beyond the broad phase.
-      const NewtonResult r = NewtonSolver(options.newton).minimize(model, start, fixed_dofs);
+      const NewtonResult r = NewtonSolver(options.newton).minimize(energy, start, fixed_dofs);
       out.iterations += r.iterations;
       out.used_contact = false;
       out.forces.resize(0);
@@ -89,7 +93,7 @@ ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactPro
           if (it != previous.end()) seed(k) = std::max(0.0, it->second);
         }
       }
-      const ConstrainedResult r = minimize_with_constraints(model, constraints, start, fixed_dofs,
+      const ConstrainedResult r = minimize_with_constraints(energy, constraints, start, fixed_dofs,
                                                             options.minimizer,
                                                             seed.size() ? &seed : nullptr);
       out.iterations += r.iterations;

@@ -68,11 +68,12 @@ struct ContactSolveResult {
   bool used_contact = false;  ///< false if the no-contact fast path sufficed
 };
 
-/// Minimises model's energy at its current excess angle from x0 (which should satisfy the
+/// Minimises the model's energy at the excess angle phi_e (radians) from x0 (which should satisfy the
 /// gaps: Ipopt keeps the interior-point iterates feasible only from a feasible start) with
 /// `fixed_dofs` held. `warm` (optional): a previous result whose forces seed the multipliers
 /// of the pairs it shares with this solve. Throws std::invalid_argument for bad options.
-ContactSolveResult solve_contact_equilibrium(ShellModel& model, const ContactProxy& proxy,
+ContactSolveResult solve_contact_equilibrium(const ShellModel& model, double excess_angle,
+                                             const ContactProxy& proxy,
                                              const Eigen::Ref<const Eigen::VectorXd>& x0,
                                              const std::vector<Eigen::Index>& fixed_dofs,
                                              const ContactSolveOptions& options,

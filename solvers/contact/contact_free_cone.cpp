@@ -4,13 +4,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 
 namespace growshell {
 
-ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& proxy,
+ContactFreeCone trace_contact_free_cone(const ShellModel& model, const ContactProxy& proxy,
                                         const std::vector<Eigen::Index>& fixed_dofs,
                                         const ContactFreeConeOptions& options) {
   if (!(std::isfinite(options.contact_distance) && options.contact_distance > 0.0))
@@ -20,9 +19,8 @@ ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& p
     throw std::invalid_argument(
         "ContactFreeConeOptions::exclusion_radius must be finite and >= contact_distance");
   ContactFreeCone out;
-  ShellGrowthFamily family(model);
   const ConeBranchEntry entry =
-      enter_cone_branch(family, model, options.entry, fixed_dofs, options.arclength);
+      enter_cone_branch(model, model, options.entry, fixed_dofs, options.arclength);
   if (!entry.found) {
     out.message = "the flat disc did not buckle: " + entry.message;
     return out;
@@ -31,7 +29,7 @@ ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& p
   const BranchTrace cone =
       leave_branch_point(entry, [&](const Eigen::VectorXd& start, const Eigen::VectorXd& mode) {
         return trace_branch_along(
-            family, start, entry.branch_point.parameter, mode, 0.0, fixed_dofs, options.arclength,
+            model, start, entry.branch_point.parameter, mode, 0.0, fixed_dofs, options.arclength,
             [&](const BranchSample& s) { out.samples.push_back(s); },
             [&](const SpecialPoint& p) { out.special_points.push_back(p); });
       }).trace;
@@ -57,13 +55,12 @@ ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& p
   return out;
 }
 
-std::vector<BranchEnergySample> contact_free_energies(ShellModel& model,
+std::vector<BranchEnergySample> contact_free_energies(const ShellModel& model,
                                                       const std::vector<BranchSample>& samples) {
   std::vector<BranchEnergySample> out;
   out.reserve(samples.size());
   for (const BranchSample& s : samples) {
-    model.set_excess_angle(s.parameter);
-    const ShellEnergyBreakdown e = model.energy_breakdown(s.x);
+    const ShellEnergyBreakdown e = model.energy_breakdown(s.x, s.parameter);
     out.push_back(
         {s.parameter, e.stretching + e.bending, elastic_energy_slope(model, s.x, s.parameter)});
   }

@@ -49,13 +49,13 @@ struct ContactFreeCone {
 /// on failure: found = false with the message and the samples traced so far. Throws
 /// std::invalid_argument if the distances are not positive or the exclusion radius is below
 /// the contact distance.
-ContactFreeCone trace_contact_free_cone(ShellModel& model, const ContactProxy& proxy,
+ContactFreeCone trace_contact_free_cone(const ShellModel& model, const ContactProxy& proxy,
                                         const std::vector<Eigen::Index>& fixed_dofs,
                                         const ContactFreeConeOptions& options);
 
 /// The samples' energies E_s + E_b and slopes dE/dphi_e (BranchEnergySample), for joining the
-/// symmetric branch. Sets the model's excess angle.
-std::vector<BranchEnergySample> contact_free_energies(ShellModel& model,
+/// symmetric branch.
+std::vector<BranchEnergySample> contact_free_energies(const ShellModel& model,
                                                       const std::vector<BranchSample>& samples);
 
 }  // namespace growshell

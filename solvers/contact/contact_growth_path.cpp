@@ -1,5 +1,7 @@
 #include "solvers/contact/contact_growth_path.hpp"
 
+#include "core/objective_at_parameter.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -17,7 +19,8 @@ ContactCandidates near_penalty_pairs(const ContactProxy& proxy,
                             options.exclusion_radius, options.selection);
 }
 
-bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
+bool relax_with_contact(const ShellModel& model, double excess_angle, const ContactProxy& proxy,
+                        Eigen::VectorXd& y,
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
                         double* energy, std::string* message, int max_rounds) {
@@ -39,7 +42,8 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
   for (int round = 0; round < max_rounds;) {
     PenalizedShell total(model, proxy, pairs, options);
     if (motion_bounded) chunk.max_iterations = std::max(1, iterations_left);
-    const NewtonResult r = NewtonSolver(chunk).minimize(total.energy, y, fixed_dofs);
+    ObjectiveAtParameter total_at(total.energy, excess_angle);
+    const NewtonResult r = NewtonSolver(chunk).minimize(total_at, y, fixed_dofs);
     y = r.x;
     iterations_left -= std::max(1, r.iterations);
     if (r.status == NewtonStatus::TravelLimit) {
@@ -63,7 +67,7 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
     // pairs near y itself, the energy a trace from y continues with.
     PenalizedShell own(model, proxy, near_penalty_pairs(proxy, y, options), options);
     Eigen::VectorXd g;
-    const double e = own.energy.evaluate(y, &g, nullptr);
+    const double e = own.energy.evaluate(y, excess_angle, &g, nullptr);
     for (const Eigen::Index i : fixed_dofs) g[i] = 0.0;  // reactions of the held dofs
     if (g.lpNorm<Eigen::Infinity>() <= newton.gradient_tolerance) {
       *energy = e;
@@ -85,7 +89,7 @@ bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::Vec
 }
 
 ContactGrowthResult grow_with_contact(
-    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, double phi_target, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactGrowthOptions& options,
     const std::function<void(const ContactGrowthPoint&)>& on_point) {
@@ -108,19 +112,19 @@ ContactGrowthResult grow_with_contact(
     pins = rigid_pins_for_state(model, x, pins, o);
     const double next =
         direction > 0 ? std::min(phi + step, phi_target) : std::max(phi - step, phi_target);
-    model.set_excess_angle(next);
     Eigen::VectorXd y = x;
     double energy = 0.0;
     std::string why;
     bool accepted = false;
     int escapes = 0;
     for (; escapes <= options.max_saddle_escapes; ++escapes) {
-      if (!relax_with_contact(model, proxy, y, pins, o, options.newton, &energy, &why)) break;
+      if (!relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy, &why)) break;
       // A strict minimum? The lowest eigenvalue of the penalised Hessian at the result.
       PenalizedShell total(model, proxy, near_penalty_pairs(proxy, y, o), o);
       EigenpairOptions eig;
       eig.count = 1;
-      const Eigenpairs lowest = lowest_eigenpairs(total.energy, y, pins, eig);
+      ObjectiveAtParameter total_at(total.energy, next);
+      const Eigenpairs lowest = lowest_eigenpairs(total_at, y, pins, eig);
       if (lowest.values[0] > 0.0) {
         accepted = true;
         break;
@@ -136,7 +140,6 @@ ContactGrowthResult grow_with_contact(
       step /= 2;
       if (step < options.min_step) {
         out.message = "step below min_step at phi_e = " + std::to_string(phi) + ": " + why;
-        model.set_excess_angle(phi);
         return out;
       }
       continue;
@@ -158,7 +161,6 @@ ContactGrowthResult grow_with_contact(
     step = std::min(options.max_step, 1.5 * step);
   }
   out.reached_target = true;
-  model.set_excess_angle(phi);
   return out;
 }
 

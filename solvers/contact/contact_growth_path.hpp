@@ -34,7 +34,7 @@ struct PenalizedShell {
   ContactCandidates pairs;
   ContactPenalty penalty;
   PenalizedEnergy energy;
-  PenalizedShell(ShellModel& model, const ContactProxy& proxy, ContactCandidates pair_set,
+  PenalizedShell(const ShellModel& model, const ContactProxy& proxy, ContactCandidates pair_set,
                  const ContactBranchOptions& options)
       : pairs(std::move(pair_set)),
         penalty(proxy, pairs, options.contact_distance, options.stiffness, model.dimension(),
@@ -45,7 +45,7 @@ struct PenalizedShell {
 };
 
 /// Minimises shell + penalty (pairs of options: near y within contact_distance +
-/// candidate_margin, stiffness, selection) at the model's current excess angle from y, with
+/// candidate_margin, stiffness, selection) at the excess angle phi_e from y, with
 /// `fixed_dofs` held. The result must also be an equilibrium, to newton.gradient_tolerance, of
 /// the penalty on the pairs near the result itself (the energy a trace from it continues), or
 /// the set it was minimised with must contain every pair near the result (then no contact is
@@ -61,7 +61,8 @@ struct PenalizedShell {
 ///
 /// On success y is the minimiser and `energy` its E + P (J); returns false (y the last
 /// iterate, `message` why) if Newton fails, the step budget is used up, or max_rounds pass.
-bool relax_with_contact(ShellModel& model, const ContactProxy& proxy, Eigen::VectorXd& y,
+bool relax_with_contact(const ShellModel& model, double excess_angle, const ContactProxy& proxy,
+                        Eigen::VectorXd& y,
                         const std::vector<Eigen::Index>& fixed_dofs,
                         const ContactBranchOptions& options, const NewtonOptions& newton,
                         double* energy, std::string* message, int max_rounds = 10);
@@ -97,10 +98,10 @@ struct ContactGrowthResult {
 
 /// Grows from the equilibrium (or any state) x0 at phi0 towards phi_target in natural steps,
 /// accepting only strict minima of shell + penalty; each accepted point goes to on_point as
-/// soon as it is found. The model is left at the last accepted excess angle. Throws
+/// soon as it is found. Throws
 /// std::invalid_argument for bad options.
 ContactGrowthResult grow_with_contact(
-    ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
+    const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, double phi_target, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactGrowthOptions& options,
     const std::function<void(const ContactGrowthPoint&)>& on_point = {});

@@ -1,5 +1,7 @@
 #include "solvers/contact/econe_branches.hpp"
 
+#include "core/objective_at_parameter.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,15 +28,15 @@ using Clock = std::chrono::steady_clock;
 
 /// The `count` eigenpairs of the penalised Hessian at (y, phi) nearest zero (nearest_zero) or
 /// lowest.
-Eigenpairs modes_at(ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
+Eigenpairs modes_at(const ShellModel& model, const ContactProxy& proxy, const Eigen::VectorXd& y,
                     double phi, const std::vector<Eigen::Index>& fixed,
                     const ContactBranchOptions& o, bool nearest_zero, int count) {
-  model.set_excess_angle(phi);
   PenalizedShell near(model, proxy, near_penalty_pairs(proxy, y, o), o);
   EigenpairOptions eig;
   eig.count = count;
   if (nearest_zero) eig.shift = 0.0;
-  return lowest_eigenpairs(near.energy, y, fixed, eig);
+  ObjectiveAtParameter near_at(near.energy, phi);
+  return lowest_eigenpairs(near_at, y, fixed, eig);
 }
 
 void validate(const EconeBranchOptions& o) {
@@ -57,7 +59,7 @@ void validate(const EconeBranchOptions& o) {
 
 }  // namespace
 
-EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& proxy,
+EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactProxy& proxy,
                                        const Eigen::Ref<const Eigen::VectorXd>& x0, double phi0,
                                        const std::vector<Eigen::Index>& fixed_dofs,
                                        const EconeBranchOptions& options,
@@ -178,10 +180,9 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     // the fold pattern can lie below it), so every negative mode among the lowest three, or
     // the lowest if none is negative, is tried in both directions.
     const Eigenpairs lowest = modes_at(model, proxy, top.x, top.parameter, pins, o, false, 3);
-    model.set_excess_angle(top.parameter);
     {
       PenalizedShell near(model, proxy, near_penalty_pairs(proxy, top.x, o), o);
-      out.symmetric_top_energy = near.energy.evaluate(top.x, nullptr, nullptr);
+      out.symmetric_top_energy = near.energy.evaluate(top.x, top.parameter, nullptr, nullptr);
     }
     double best_energy = out.symmetric_top_energy;
     Eigen::VectorXd best;
@@ -196,7 +197,8 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
         Eigen::VectorXd y = top.x + sign * (options.push * h_c / mode.cwiseAbs().maxCoeff()) * mode;
         double energy = 0.0;
         std::string why;
-        if (!relax_with_contact(model, proxy, y, pins, o, options.relaxation, &energy, &why)) {
+        if (!relax_with_contact(model, top.parameter, proxy, y, pins, o, options.relaxation, &energy,
+                                &why)) {
           m << " mode " << k << " push " << sign << ": " << why << ";";
           continue;
         }
@@ -217,14 +219,13 @@ EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& pr
     note(out.skewed_message);
     if (best.size() > 0 && options.verify_with_ipopt) {
       const auto t_ipopt = Clock::now();
-      model.set_excess_angle(top.parameter);
-      const ContactSolveResult check =
-          solve_contact_equilibrium(model, proxy, best, pins, *options.verify_with_ipopt);
+      const ContactSolveResult check = solve_contact_equilibrium(model, top.parameter, proxy, best,
+                                                                 pins, *options.verify_with_ipopt);
       out.ipopt_checked = true;
       out.ipopt_converged = check.converged;
       out.ipopt_message = check.message;
-      const ShellEnergyBreakdown at_ipopt = model.energy_breakdown(check.x);
-      const ShellEnergyBreakdown at_penalty = model.energy_breakdown(best);
+      const ShellEnergyBreakdown at_ipopt = model.energy_breakdown(check.x, top.parameter);
+      const ShellEnergyBreakdown at_penalty = model.energy_breakdown(best, top.parameter);
       out.ipopt_energy = at_ipopt.stretching + at_ipopt.bending;
       out.penalty_elastic_energy = at_penalty.stretching + at_penalty.bending;
       out.ipopt_state_difference = (check.x - best).cwiseAbs().maxCoeff();

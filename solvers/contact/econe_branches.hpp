@@ -129,7 +129,7 @@ struct EconeBranchCallbacks {
 /// without contact), with `fixed_dofs` held: traces the symmetric branch up to
 /// options.symmetric_end, finds and traces the skewed branch, and locates the energy crossing.
 /// Throws std::invalid_argument for bad options (naming the field).
-EconeBranchResult trace_econe_branches(ShellModel& model, const ContactProxy& proxy,
+EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactProxy& proxy,
                                        const Eigen::Ref<const Eigen::VectorXd>& x0, double phi0,
                                        const std::vector<Eigen::Index>& fixed_dofs,
                                        const EconeBranchOptions& options,

@@ -57,19 +57,18 @@ void validate_samples(const ShellModel& model, const std::vector<BranchSample>& 
                    std::string("branch ") + branch + " sample " + std::to_string(i));
 }
 
-double elastic_energy(ShellModel& model, const Eigen::VectorXd& x) {
-  const ShellEnergyBreakdown e = model.energy_breakdown(x);
+double elastic_energy(const ShellModel& model, const Eigen::VectorXd& x, double excess_angle) {
+  const ShellEnergyBreakdown e = model.energy_breakdown(x, excess_angle);
   return e.stretching + e.bending;
 }
 
-HardContactSample resolve(ShellModel& model, const ContactProxy& proxy, const BranchSample& s,
+HardContactSample resolve(const ShellModel& model, const ContactProxy& proxy, const BranchSample& s,
                           const std::vector<Eigen::Index>& pins,
                           const HardContactCrossingOptions& o) {
   const auto start = Clock::now();
   HardContactSample out;
   out.parameter = s.parameter;
-  model.set_excess_angle(s.parameter);
-  out.start_energy = elastic_energy(model, s.x);
+  out.start_energy = elastic_energy(model, s.x, s.parameter);
   const std::vector<Eigen::Index> fixed =
       well_conditioned_pins(Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
                                 s.x.data(), s.x.size() / 3, 3),
@@ -92,7 +91,7 @@ HardContactSample resolve(ShellModel& model, const ContactProxy& proxy, const Br
     for (Eigen::Index k = 0; k < gaps.count(); ++k)
       penalty.forces(k) = o.penalty_stiffness * std::max(0.0, -gaps.pair_geometry(s.x, k).gap);
   }
-  ContactSolveResult r = solve_contact_equilibrium(model, proxy, s.x, fixed, o.solve,
+  ContactSolveResult r = solve_contact_equilibrium(model, s.parameter, proxy, s.x, fixed, o.solve,
                                                    o.penalty_stiffness > 0.0 ? &penalty : nullptr);
   out.converged = r.converged;
   out.message = r.message;
@@ -101,7 +100,7 @@ HardContactSample resolve(ShellModel& model, const ContactProxy& proxy, const Br
   out.iterations = r.iterations;
   out.min_distance = r.min_distance;
   out.max_state_difference = (out.x - s.x).cwiseAbs().maxCoeff();
-  out.energy = elastic_energy(model, out.x);
+  out.energy = elastic_energy(model, out.x, s.parameter);
   out.energy_slope = elastic_energy_slope(model, out.x, s.parameter, o.slope_step);
 
   out.gamma = std::numeric_limits<double>::quiet_NaN();
@@ -157,7 +156,7 @@ std::pair<std::size_t, std::size_t> continuous_stretch(
   return {first, last};
 }
 
-HardContactSample resolve_with_hard_contact(ShellModel& model, const ContactProxy& proxy,
+HardContactSample resolve_with_hard_contact(const ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const std::vector<Eigen::Index>& pins,
                                             const HardContactCrossingOptions& options) {
@@ -166,7 +165,7 @@ HardContactSample resolve_with_hard_contact(ShellModel& model, const ContactProx
   return resolve(model, proxy, sample, pins, options);
 }
 
-HardContactCrossing hard_contact_energy_crossing(ShellModel& model, const ContactProxy& proxy,
+HardContactCrossing hard_contact_energy_crossing(const ShellModel& model, const ContactProxy& proxy,
                                                  const std::vector<BranchSample>& a,
                                                  const std::vector<BranchSample>& b,
                                                  const std::vector<Eigen::Index>& pins,

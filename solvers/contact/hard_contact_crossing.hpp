@@ -15,8 +15,7 @@
 /// applies, with its O(dphi^4) error: two samples per branch that bracket the crossing locate
 /// it, and a third (a neighbour) gives the error estimate.
 ///
-/// Each re-solve starts from the penalty state and is independent of the others; the model's
-/// excess angle is left at the last sample's.
+/// Each re-solve starts from the penalty state and is independent of the others.
 ///
 /// Warm start. With penalty_stiffness set, each re-solve is warm started
 /// (ConstrainedMinimizerOptions::warm_start): the multipliers are seeded with the penalty's
@@ -107,10 +106,9 @@ struct HardContactCrossing {
 
 /// Re-solves one branch sample (a state of `model` at sample.parameter, e.g. a penalty-traced
 /// one) with Ipopt under the hard constraints, holding the six rigid-motion `pins` (re-chosen on
-/// the state if their condition exceeds options.max_pin_condition). Sets the model's excess
-/// angle to sample.parameter. Throws std::invalid_argument for bad options or pins, or a state
+/// the state if their condition exceeds options.max_pin_condition), at sample.parameter. Throws std::invalid_argument for bad options or pins, or a state
 /// that does not fit the model or is not finite.
-HardContactSample resolve_with_hard_contact(ShellModel& model, const ContactProxy& proxy,
+HardContactSample resolve_with_hard_contact(const ShellModel& model, const ContactProxy& proxy,
                                             const BranchSample& sample,
                                             const std::vector<Eigen::Index>& pins,
                                             const HardContactCrossingOptions& options);
@@ -145,7 +143,7 @@ using HardContactSampleCallback =
 /// order (phi_e may not repeat). A failed solve is reported in its sample and left out of the
 /// crossing. Throws std::invalid_argument for bad options, pins that are not six dofs, or a
 /// sample whose state does not fit the model or is not finite, naming branch and index.
-HardContactCrossing hard_contact_energy_crossing(ShellModel& model, const ContactProxy& proxy,
+HardContactCrossing hard_contact_energy_crossing(const ShellModel& model, const ContactProxy& proxy,
                                                  const std::vector<BranchSample>& a,
                                                  const std::vector<BranchSample>& b,
                                                  const std::vector<Eigen::Index>& pins,

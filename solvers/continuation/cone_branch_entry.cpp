@@ -41,7 +41,7 @@ int rim_angular_wavenumber(const ShellModel& model, const Eigen::Ref<const Eigen
   return best_k;
 }
 
-ConeBranchEntry enter_cone_branch(ParametrizedObjective& family, const ShellModel& model,
+ConeBranchEntry enter_cone_branch(const ParametrizedObjective& family, const ShellModel& model,
                                   const ConeEntryOptions& entry,
                                   const std::vector<Eigen::Index>& fixed_dofs,
                                   const ArclengthOptions& cone_options,

@@ -52,7 +52,7 @@ struct ConeBranchEntry {
 /// step off the branch is 0.005 (times h / 0.005 R for thinner sheets, whose cone amplitude
 /// near threshold is smaller), so the corrector converges onto the cone. Special points of the
 /// flat branch go to on_special. Throws std::invalid_argument for folds < 2 or h, R <= 0.
-ConeBranchEntry enter_cone_branch(ParametrizedObjective& family, const ShellModel& model,
+ConeBranchEntry enter_cone_branch(const ParametrizedObjective& family, const ShellModel& model,
                                   const ConeEntryOptions& entry,
                                   const std::vector<Eigen::Index>& fixed_dofs,
                                   const ArclengthOptions& cone_options,

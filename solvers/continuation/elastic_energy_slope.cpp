@@ -2,13 +2,10 @@
 
 namespace growshell {
 
-double elastic_energy_slope(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+double elastic_energy_slope(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                             double phi, double delta) {
-  model.set_excess_angle(phi + delta);
-  const ShellEnergyBreakdown up = model.energy_breakdown(x);
-  model.set_excess_angle(phi - delta);
-  const ShellEnergyBreakdown down = model.energy_breakdown(x);
-  model.set_excess_angle(phi);
+  const ShellEnergyBreakdown up = model.energy_breakdown(x, phi + delta);
+  const ShellEnergyBreakdown down = model.energy_breakdown(x, phi - delta);
   return ((up.stretching + up.bending) - (down.stretching + down.bending)) / (2.0 * delta);
 }
 

@@ -4,29 +4,30 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/objective_at_parameter.hpp"
 #include "solvers/newton/cholmod_factorization.hpp"
 #include "solvers/newton/fixed_dof_elimination.hpp"
 #include "solvers/stability/positive_definiteness.hpp"
 
 namespace growshell {
 
-Eigen::VectorXd equilibrium_tangent(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                    const std::vector<Eigen::Index>& fixed_dofs) {
+Eigen::VectorXd equilibrium_tangent(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    double excess_angle, const std::vector<Eigen::Index>& fixed_dofs) {
   Eigen::SparseMatrix<double> hessian = model.hessian_pattern();
   const FixedDofElimination fixed(hessian, fixed_dofs);
-  model.evaluate(x, nullptr, &hessian);
+  model.evaluate(x, excess_angle, nullptr, &hessian);
   fixed.apply(hessian);
   CholmodFactorization cholesky;
   cholesky.analyze(hessian);
   if (!cholesky.factorize(hessian, 0.0).positive_definite) return {};
-  Eigen::VectorXd rhs = -model.gradient_excess_angle_derivative(x);
+  Eigen::VectorXd rhs = -model.gradient_parameter_derivative(x, excess_angle);
   fixed.zero_fixed(rhs);
   Eigen::VectorXd tangent = cholesky.solve(rhs);
   fixed.zero_fixed(tangent);
   return tangent;
 }
 
-GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x_start,
+GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x_start,
                                  double phi_start, double phi_target,
                                  const std::vector<Eigen::Index>& fixed_dofs,
                                  const NewtonSolver& newton,
@@ -51,25 +52,25 @@ GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen
     const double phi = std::abs(phi_target - out.last.excess_angle) <= step
                            ? phi_target
                            : out.last.excess_angle + direction * step;
-    model.set_excess_angle(phi);
+    ObjectiveAtParameter energy(model, phi);
     Eigen::VectorXd guess = out.last.x;
     if (options.tangent_predictor && tangent.size() == guess.size())
       guess += (phi - out.last.excess_angle) * tangent;
-    NewtonResult result = solver.minimize(model, guess, fixed_dofs, on_iterate);
+    NewtonResult result = solver.minimize(energy, guess, fixed_dofs, on_iterate);
     if (!result.converged() && tangent.size() == guess.size()) {
       // The predictor can overshoot near a fold or a bifurcation: retry from the last point.
-      result = solver.minimize(model, out.last.x, fixed_dofs, on_iterate);
+      result = solver.minimize(energy, out.last.x, fixed_dofs, on_iterate);
     }
     GrowthPathPoint point;
     point.excess_angle = phi;
     point.newton_iterations = result.iterations;
-    bool stable = result.converged() && hessian_is_positive_definite(model, result.x, fixed_dofs);
+    bool stable = result.converged() && hessian_is_positive_definite(energy, result.x, fixed_dofs);
     while (result.converged() && !stable && point.saddle_escapes < options.max_saddle_escapes) {
       ++point.saddle_escapes;
-      result = solver.minimize(model, result.x + perturb(point.saddle_escapes), fixed_dofs,
+      result = solver.minimize(energy, result.x + perturb(point.saddle_escapes), fixed_dofs,
                                on_iterate);
       point.newton_iterations += result.iterations;
-      stable = result.converged() && hessian_is_positive_definite(model, result.x, fixed_dofs);
+      stable = result.converged() && hessian_is_positive_definite(energy, result.x, fixed_dofs);
     }
     if (!stable) {
       ++out.failed_steps;
@@ -78,7 +79,6 @@ GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen
                                              " perturbations of a saddle"
                                        : result.message;
       if (step / 2 < options.min_step) {
-        model.set_excess_angle(out.last.excess_angle);
         out.message = "path ended at phi_e = " + std::to_string(out.last.excess_angle) +
                       ": step to " + std::to_string(phi) + " failed (" + out.message + ")";
         return out;
@@ -90,7 +90,7 @@ GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen
     out.last = std::move(point);
     ++out.steps;
     if (on_point) on_point(out.last);
-    if (options.tangent_predictor) tangent = equilibrium_tangent(model, out.last.x, fixed_dofs);
+    if (options.tangent_predictor) tangent = equilibrium_tangent(model, out.last.x, out.last.excess_angle, fixed_dofs);
     step = std::min(options.max_step, options.step_growth * step);
   }
   out.reached_target = true;

@@ -44,13 +44,12 @@ struct GrowthPathResult {
 };
 
 /// Grows from the equilibrium (or any state) `x_start` at `phi_start` to `phi_target`
-/// (either direction). At every step the model's excess angle is set, a predictor is
-/// corrected by `newton` with `fixed_dofs` held, and a converged state that is not a strict
+/// (either direction). At every step's excess angle a predictor is corrected by `newton`
+/// (minimising the model at that angle) with `fixed_dofs` held, and a converged state that is not a strict
 /// minimum (see hessian_is_positive_definite) is displaced by `perturb(attempt)` (a vector of
 /// the model's dimension) and re-minimised. Every accepted point is passed to `on_point`.
 /// A failing step is halved; the path ends, keeping its last point, below options.min_step.
-/// The model is left at the excess angle of the last converged point.
-GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x_start,
+GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x_start,
                                  double phi_start, double phi_target,
                                  const std::vector<Eigen::Index>& fixed_dofs,
                                  const NewtonSolver& newton,
@@ -59,9 +58,9 @@ GrowthPathResult grow_along_path(ShellModel& model, const Eigen::Ref<const Eigen
                                  const std::function<void(const GrowthPathPoint&)>& on_point = {},
                                  const std::function<void(const NewtonIterate&)>& on_iterate = {});
 
-/// Equilibrium tangent dx/d(phi_e) = -H^-1 d(gradient)/d(phi_e) at x with `fixed_dofs` held
-/// (metres per radian). Returns an empty vector where H is not positive definite.
-Eigen::VectorXd equilibrium_tangent(ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                    const std::vector<Eigen::Index>& fixed_dofs);
+/// Equilibrium tangent dx/d(phi_e) = -H^-1 d(gradient)/d(phi_e) at (x, phi_e) with `fixed_dofs`
+/// held (metres per radian). Returns an empty vector where H is not positive definite.
+Eigen::VectorXd equilibrium_tangent(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    double excess_angle, const std::vector<Eigen::Index>& fixed_dofs);
 
 }  // namespace growshell

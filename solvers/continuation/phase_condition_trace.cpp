@@ -10,7 +10,7 @@
 namespace growshell {
 
 BranchTrace trace_branch_with_phase_condition(
-    ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& functional,
+    const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& functional,
     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
     const Eigen::Ref<const Eigen::VectorXd>& direction_state, double direction_parameter,
     const std::vector<Eigen::Index>& fixed_dofs, const ArclengthOptions& options,
@@ -41,8 +41,7 @@ BranchTrace trace_branch_with_phase_condition(
   // The start's multiplier: the gradient's share along c, so that the start is as close to a
   // stationary point of the Lagrangian as x0 is to an equilibrium.
   Eigen::VectorXd g;
-  family.set_parameter(lambda0);
-  family.evaluate(x0, &g, nullptr);
+  family.evaluate(x0, lambda0, &g, nullptr);
   Eigen::VectorXd z0(n + 1);
   z0.head(n) = x0;
   z0(n) = phase_multiplier(g, unit, fixed_dofs);
@@ -56,7 +55,7 @@ BranchTrace trace_branch_with_phase_condition(
   HessianNegativeCount bordered_count(conditioned, fixed_dofs);
   o.stability_index = [&](const BranchSample& s) {
     if (options.stability_index) return options.stability_index(strip(s));
-    return bordered_count.at(s.x) - 1;
+    return bordered_count.at(s.x, s.parameter) - 1;
   };
   std::vector<BranchEvent> state_events = events;
   for (BranchEvent& e : state_events)

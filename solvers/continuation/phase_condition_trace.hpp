@@ -28,7 +28,7 @@ namespace growshell {
 /// along an exact symmetry orbit). Throws std::invalid_argument for a functional of the wrong
 /// size, not finite or vanishing, or a direction of the wrong size, and as trace_branch_along.
 BranchTrace trace_branch_with_phase_condition(
-    ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& functional,
+    const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& functional,
     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
     const Eigen::Ref<const Eigen::VectorXd>& direction_state, double direction_parameter,
     const std::vector<Eigen::Index>& fixed_dofs, const ArclengthOptions& options,

@@ -8,7 +8,7 @@
 
 namespace growshell {
 
-PhaseConditionedFamily::PhaseConditionedFamily(ParametrizedObjective& family,
+PhaseConditionedFamily::PhaseConditionedFamily(const ParametrizedObjective& family,
                                                Eigen::VectorXd functional, double value)
     : family_(family), functional_(std::move(functional)), value_(value) {
   const Eigen::Index n = family_.dimension();
@@ -20,11 +20,11 @@ PhaseConditionedFamily::PhaseConditionedFamily(ParametrizedObjective& family,
     throw std::invalid_argument("PhaseConditionedFamily: the functional and its value must be finite");
   if (functional_.lpNorm<Eigen::Infinity>() == 0.0)
     throw std::invalid_argument("PhaseConditionedFamily: the functional vanishes");
-  family_hessian_ = family_.hessian_pattern();
+  const Eigen::SparseMatrix<double> family_pattern = family_.hessian_pattern();
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(family_hessian_.nonZeros() + n + 1));
-  for (Eigen::Index col = 0; col < family_hessian_.outerSize(); ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(family_hessian_, col); it; ++it)
+  entries.reserve(static_cast<std::size_t>(family_pattern.nonZeros() + n + 1));
+  for (Eigen::Index col = 0; col < family_pattern.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(family_pattern, col); it; ++it)
       entries.emplace_back(it.row(), it.col(), 1.0);
   for (Eigen::Index i = 0; i < n; ++i)
     if (functional_(i) != 0.0) entries.emplace_back(i, n, 1.0);
@@ -34,28 +34,31 @@ PhaseConditionedFamily::PhaseConditionedFamily(ParametrizedObjective& family,
   pattern_.makeCompressed();
 }
 
-double PhaseConditionedFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z,
+double PhaseConditionedFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, double lambda,
                                         Eigen::VectorXd* gradient,
-                                        Eigen::SparseMatrix<double>* hessian_upper) {
+                                        Eigen::SparseMatrix<double>* hessian_upper) const {
   const Eigen::Index n = family_.dimension();
   if (z.size() != n + 1)
     throw std::invalid_argument("PhaseConditionedFamily::evaluate: needs " + std::to_string(n + 1) +
                                 " unknowns, got " + std::to_string(z.size()));
   const auto x = z.head(n);
   const double mu = z(n);
-  const double energy = family_.evaluate(x, gradient ? &family_gradient_ : nullptr,
-                                         hessian_upper ? &family_hessian_ : nullptr);
+  Eigen::VectorXd family_gradient;
+  Eigen::SparseMatrix<double> family_hessian;
+  if (hessian_upper) family_hessian = family_.hessian_pattern();
+  const double energy = family_.evaluate(x, lambda, gradient ? &family_gradient : nullptr,
+                                         hessian_upper ? &family_hessian : nullptr);
   const double constraint = functional_.dot(x) - value_;
   if (gradient) {
     gradient->resize(n + 1);
-    gradient->head(n) = family_gradient_ + mu * functional_;
+    gradient->head(n) = family_gradient + mu * functional_;
     (*gradient)(n) = constraint;
   }
   if (hessian_upper) {
     // The first n columns have H's structure, in the same order; the last holds c and 0.
     double* values = hessian_upper->valuePtr();
-    const Eigen::Index h = family_hessian_.nonZeros();
-    std::copy(family_hessian_.valuePtr(), family_hessian_.valuePtr() + h, values);
+    const Eigen::Index h = family_hessian.nonZeros();
+    std::copy(family_hessian.valuePtr(), family_hessian.valuePtr() + h, values);
     Eigen::Index k = h;
     for (Eigen::SparseMatrix<double>::InnerIterator it(*hessian_upper, n); it; ++it, ++k)
       values[k] = it.row() < n ? functional_(it.row()) : 0.0;
@@ -64,10 +67,10 @@ double PhaseConditionedFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>&
 }
 
 Eigen::VectorXd PhaseConditionedFamily::gradient_parameter_derivative(
-    const Eigen::Ref<const Eigen::VectorXd>& z) {
+    const Eigen::Ref<const Eigen::VectorXd>& z, double lambda) const {
   const Eigen::Index n = family_.dimension();
   Eigen::VectorXd d(n + 1);
-  d.head(n) = family_.gradient_parameter_derivative(z.head(n));
+  d.head(n) = family_.gradient_parameter_derivative(z.head(n), lambda);
   d(n) = 0.0;
   return d;
 }

@@ -26,29 +26,29 @@ class PhaseConditionedFamily final : public ParametrizedObjective {
  public:
   /// `functional` c (one entry per unknown of `family`, not all zero, finite) and the value b
   /// it is held at. Throws std::invalid_argument otherwise.
-  PhaseConditionedFamily(ParametrizedObjective& family, Eigen::VectorXd functional, double value);
+  PhaseConditionedFamily(const ParametrizedObjective& family, Eigen::VectorXd functional,
+                         double value);
 
   /// n + 1: the family's unknowns, then the multiplier mu.
   Eigen::Index dimension() const override { return family_.dimension() + 1; }
   /// H's pattern, plus the last column: the nonzeros of c and the diagonal (n, n).
   Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::VectorXd* gradient,
-                  Eigen::SparseMatrix<double>* hessian_upper) override;
-  void set_parameter(double lambda) override { family_.set_parameter(lambda); }
-  double parameter() const override { return family_.parameter(); }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, double lambda,
+                  Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) const override;
+  bool accepts_parameter(double lambda) const override { return family_.accepts_parameter(lambda); }
   /// (d g / d lambda, 0).
-  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& z) override;
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                                double lambda) const override;
 
   const Eigen::VectorXd& functional() const { return functional_; }
   double value() const { return value_; }
 
  private:
-  ParametrizedObjective& family_;
+  const ParametrizedObjective& family_;
   Eigen::VectorXd functional_;
   double value_;
   Eigen::SparseMatrix<double> pattern_;
-  Eigen::SparseMatrix<double> family_hessian_;
-  Eigen::VectorXd family_gradient_;
 };
 
 /// The multiplier mu that best balances the gradient g of the unconstrained energy at a state

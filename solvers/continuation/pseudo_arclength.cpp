@@ -30,7 +30,7 @@ class ScopedSeconds {
 /// Hessian buffer and the factorisation (analysed once).
 class BranchSolver {
  public:
-  BranchSolver(ParametrizedObjective& family, const std::vector<Eigen::Index>& fixed_dofs,
+  BranchSolver(const ParametrizedObjective& family, const std::vector<Eigen::Index>& fixed_dofs,
                const ArclengthOptions& options)
       : family_(family),
         hessian_(family.hessian_pattern()),
@@ -51,16 +51,13 @@ class BranchSolver {
   /// d(gradient)/d(lambda). False if anything is not finite or the factorisation failed.
   bool linearize(const Eigen::VectorXd& x, double lambda) {
     if (!std::isfinite(lambda) || !x.allFinite()) return false;
-    try {
-      family_.set_parameter(lambda);  // a diverging corrector may leave the family's domain
-    } catch (const std::invalid_argument&) {
-      return false;
-    }
+    // A diverging corrector may leave the family's domain.
+    if (!family_.accepts_parameter(lambda)) return false;
     ++cost_.linearizations;
     double e = 0.0;
     {
       ScopedSeconds timer(cost_.assembly_seconds);
-      e = family_.evaluate(x, &gradient_, &hessian_);
+      e = family_.evaluate(x, lambda, &gradient_, &hessian_);
     }
     if (!std::isfinite(e) || !gradient_.allFinite()) return false;
     fixed_.zero_fixed(gradient_);
@@ -77,7 +74,7 @@ class BranchSolver {
     if (factorization_.zero_pivots() > 0) return false;
     {
       ScopedSeconds timer(cost_.assembly_seconds);
-      parameter_derivative_ = family_.gradient_parameter_derivative(x);
+      parameter_derivative_ = family_.gradient_parameter_derivative(x, lambda);
     }
     fixed_.zero_fixed(parameter_derivative_);
     return parameter_derivative_.allFinite();
@@ -129,7 +126,6 @@ class BranchSolver {
           } catch (const std::runtime_error&) {
             return false;
           }
-          family_.set_parameter(lambda);
         }
         return true;
       }
@@ -158,7 +154,7 @@ class BranchSolver {
     return factorization_.solve(rhs);
   }
 
-  ParametrizedObjective& family_;
+  const ParametrizedObjective& family_;
   Eigen::SparseMatrix<double> hessian_;
   FixedDofElimination fixed_;
   ArclengthOptions options_;
@@ -175,7 +171,7 @@ const char* to_string(SpecialPoint::Kind kind) {
   return kind == SpecialPoint::Kind::Fold ? "fold" : "branch_point";
 }
 
-BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
+BranchTrace trace_branch(const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
                          double lambda0, int direction, const std::vector<Eigen::Index>& fixed_dofs,
                          const ArclengthOptions& options,
                          const std::function<void(const BranchSample&)>& on_sample,
@@ -185,7 +181,7 @@ BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const E
                             on_special);
 }
 
-Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
+Eigen::VectorXd critical_mode(const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
                               double lambda, const Eigen::Ref<const Eigen::VectorXd>& hint,
                               const std::vector<Eigen::Index>& fixed_dofs,
                               const ArclengthOptions& options, int iterations) {
@@ -208,8 +204,8 @@ Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<co
 namespace {
 
 /// The trace proper; trace_branch_along wraps it to collect the solver's cost.
-BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& family,
-                               const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen::VectorXd>& x0,
+                               double lambda0,
                                const Eigen::Ref<const Eigen::VectorXd>& direction_state,
                                double direction_parameter,
                                const ArclengthOptions& options,
@@ -260,7 +256,6 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
     if (p.parameter < options.parameter_min || p.parameter > options.parameter_max) {
       out.reached_bound = true;
       out.message = "reached the parameter bound";
-      family.set_parameter(p.parameter);
       return out;
     }
     BranchSample next;
@@ -275,7 +270,6 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
       step /= 2;
       if (step < options.min_step) {
         out.message = "step below min_step at parameter " + std::to_string(p.parameter);
-        family.set_parameter(p.parameter);
         return out;
       }
       continue;
@@ -356,7 +350,6 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
         sample_done(out.last);
         out.reached_bound = true;
         out.message = "found max_special_points special points";
-        family.set_parameter(out.last.parameter);
         return out;
       }
     }
@@ -406,7 +399,6 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
     if (stop) {
       out.reached_bound = true;
       out.message = "stopped at event '" + out.events.back().kind + "'";
-      family.set_parameter(out.last.parameter);
       return out;
     }
     const double factor =
@@ -422,7 +414,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, ParametrizedObjective& famil
 
 }  // namespace
 
-BranchTrace trace_branch_along(ParametrizedObjective& family,
+BranchTrace trace_branch_along(const ParametrizedObjective& family,
                                const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
                                const Eigen::Ref<const Eigen::VectorXd>& direction_state,
                                double direction_parameter,
@@ -436,7 +428,7 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
     throw std::invalid_argument("trace_branch: x0 has the wrong size");
   const auto start = std::chrono::steady_clock::now();
   BranchSolver solver(family, fixed_dofs, options);
-  BranchTrace out = trace_with_solver(solver, family, x0, lambda0, direction_state,
+  BranchTrace out = trace_with_solver(solver, x0, lambda0, direction_state,
                                       direction_parameter, options, on_sample,
                                       on_special, events, on_event);
   out.cost = solver.cost();

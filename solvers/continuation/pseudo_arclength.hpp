@@ -141,7 +141,7 @@ struct BranchTrace {
 /// otherwise. Each converged sample goes to on_sample as soon as it converges; special points
 /// go to on_special. The trace never dies on one bad step: failed steps are halved down to
 /// options.min_step, and the result always holds the last converged sample.
-BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
+BranchTrace trace_branch(const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x0,
                          double lambda0, int direction, const std::vector<Eigen::Index>& fixed_dofs,
                          const ArclengthOptions& options,
                          const std::function<void(const BranchSample&)>& on_sample = {},
@@ -151,7 +151,7 @@ BranchTrace trace_branch(ParametrizedObjective& family, const Eigen::Ref<const E
 /// orthogonal to the direction (direction_state, direction_parameter), and the branch is
 /// followed in that direction. Used after branch switching, where the fixed-lambda correction
 /// of trace_branch could slide back onto the branch left behind.
-BranchTrace trace_branch_along(ParametrizedObjective& family,
+BranchTrace trace_branch_along(const ParametrizedObjective& family,
                                const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
                                const Eigen::Ref<const Eigen::VectorXd>& direction_state,
                                double direction_parameter,
@@ -167,7 +167,7 @@ BranchTrace trace_branch_along(ParametrizedObjective& family,
 /// mode; the iteration stays in the hint's symmetry class, which picks one of a degenerate
 /// pair). Returns the mode scaled to unit weighted norm, with fixed dofs zero; throws
 /// std::runtime_error if the Hessian cannot be factorised there.
-Eigen::VectorXd critical_mode(ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
+Eigen::VectorXd critical_mode(const ParametrizedObjective& family, const Eigen::Ref<const Eigen::VectorXd>& x,
                               double lambda, const Eigen::Ref<const Eigen::VectorXd>& hint,
                               const std::vector<Eigen::Index>& fixed_dofs,
                               const ArclengthOptions& options, int iterations = 4);

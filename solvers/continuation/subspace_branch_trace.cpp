@@ -8,7 +8,7 @@
 
 namespace growshell {
 
-BranchTrace trace_branch_in_subspace(ParametrizedObjective& family,
+BranchTrace trace_branch_in_subspace(const ParametrizedObjective& family,
                                      const SymmetricSubspace& subspace,
                                      const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
                                      const Eigen::Ref<const Eigen::VectorXd>& direction_state,
@@ -54,7 +54,7 @@ BranchTrace trace_branch_in_subspace(ParametrizedObjective& family,
     BranchSample full;
     full.parameter = s.parameter;
     full.x = state_to_caller(s.x);
-    return options.stability_index ? options.stability_index(full) : full_count.at(full.x);
+    return options.stability_index ? options.stability_index(full) : full_count.at(full.x, full.parameter);
   };
   std::vector<BranchEvent> full_events = events;
   for (BranchEvent& e : full_events)

@@ -27,7 +27,7 @@ namespace growshell {
 /// TraceCost::stability_*). Throws std::invalid_argument if the subspace is for another
 /// dimension, and as trace_branch_along and SymmetricSubspace::aligning_motion.
 BranchTrace trace_branch_in_subspace(
-    ParametrizedObjective& family, const SymmetricSubspace& subspace,
+    const ParametrizedObjective& family, const SymmetricSubspace& subspace,
     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
     const Eigen::Ref<const Eigen::VectorXd>& direction_state, double direction_parameter,
     const std::vector<Eigen::Index>& fixed_dofs, const ArclengthOptions& options,

@@ -28,7 +28,7 @@ void scatter_upper(const Eigen::SparseMatrix<double>& product,
 
 }  // namespace
 
-SymmetricSubspaceFamily::SymmetricSubspaceFamily(ParametrizedObjective& full,
+SymmetricSubspaceFamily::SymmetricSubspaceFamily(const ParametrizedObjective& full,
                                                  const SymmetricSubspace& subspace)
     : full_(full), subspace_(subspace) {
   if (subspace.full_dimension() != full.dimension())
@@ -36,9 +36,8 @@ SymmetricSubspaceFamily::SymmetricSubspaceFamily(ParametrizedObjective& full,
                                 std::to_string(subspace.full_dimension()) +
                                 " unknowns, the family has " + std::to_string(full.dimension()));
   basis_transpose_ = subspace.basis().transpose();
-  full_hessian_ = full.hessian_pattern();
   // Structural pattern from absolute values, so that no entry cancels to a structural gap.
-  Eigen::SparseMatrix<double> ones = full_hessian_;
+  Eigen::SparseMatrix<double> ones = full.hessian_pattern();
   std::fill(ones.valuePtr(), ones.valuePtr() + ones.nonZeros(), 1.0);
   const Eigen::SparseMatrix<double> symmetric_ones = ones.selfadjointView<Eigen::Upper>();
   const Eigen::SparseMatrix<double> abs_basis = subspace.basis().cwiseAbs();
@@ -48,15 +47,18 @@ SymmetricSubspaceFamily::SymmetricSubspaceFamily(ParametrizedObjective& full,
   pattern_.makeCompressed();  // values: structural counts (positive, for an analysis)
 }
 
-double SymmetricSubspaceFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y,
+double SymmetricSubspaceFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, double lambda,
                                          Eigen::VectorXd* gradient,
-                                         Eigen::SparseMatrix<double>* hessian_upper) {
+                                         Eigen::SparseMatrix<double>* hessian_upper) const {
   const Eigen::VectorXd x = subspace_.expand(y);
-  const double e = full_.evaluate(x, gradient ? &full_gradient_ : nullptr,
-                                  hessian_upper ? &full_hessian_ : nullptr);
-  if (gradient) *gradient = basis_transpose_ * full_gradient_;
+  Eigen::VectorXd full_gradient;
+  Eigen::SparseMatrix<double> full_hessian;
+  if (hessian_upper) full_hessian = full_.hessian_pattern();
+  const double e = full_.evaluate(x, lambda, gradient ? &full_gradient : nullptr,
+                                  hessian_upper ? &full_hessian : nullptr);
+  if (gradient) *gradient = basis_transpose_ * full_gradient;
   if (hessian_upper) {
-    const Eigen::SparseMatrix<double> symmetric = full_hessian_.selfadjointView<Eigen::Upper>();
+    const Eigen::SparseMatrix<double> symmetric = full_hessian.selfadjointView<Eigen::Upper>();
     const Eigen::SparseMatrix<double> product = basis_transpose_ * symmetric * subspace_.basis();
     if (hessian_upper->nonZeros() != pattern_.nonZeros() ||
         hessian_upper->cols() != pattern_.cols())
@@ -67,8 +69,8 @@ double SymmetricSubspaceFamily::evaluate(const Eigen::Ref<const Eigen::VectorXd>
 }
 
 Eigen::VectorXd SymmetricSubspaceFamily::gradient_parameter_derivative(
-    const Eigen::Ref<const Eigen::VectorXd>& y) {
-  return basis_transpose_ * full_.gradient_parameter_derivative(subspace_.expand(y));
+    const Eigen::Ref<const Eigen::VectorXd>& y, double lambda) const {
+  return basis_transpose_ * full_.gradient_parameter_derivative(subspace_.expand(y), lambda);
 }
 
 }  // namespace growshell

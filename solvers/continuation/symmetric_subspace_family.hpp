@@ -18,27 +18,25 @@ namespace growshell {
 class SymmetricSubspaceFamily final : public ParametrizedObjective {
  public:
   /// Throws std::invalid_argument if the subspace is for another dimension.
-  SymmetricSubspaceFamily(ParametrizedObjective& full, const SymmetricSubspace& subspace);
+  SymmetricSubspaceFamily(const ParametrizedObjective& full, const SymmetricSubspace& subspace);
 
   Eigen::Index dimension() const override { return subspace_.dimension(); }
   /// Upper triangle of the structural pattern of Q^T H Q (fixed, from |Q|^T |H| |Q|).
   Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::VectorXd* gradient,
-                  Eigen::SparseMatrix<double>* hessian_upper) override;
-  void set_parameter(double lambda) override { full_.set_parameter(lambda); }
-  double parameter() const override { return full_.parameter(); }
-  Eigen::VectorXd gradient_parameter_derivative(
-      const Eigen::Ref<const Eigen::VectorXd>& y) override;
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, double lambda,
+                  Eigen::VectorXd* gradient,
+                  Eigen::SparseMatrix<double>* hessian_upper) const override;
+  bool accepts_parameter(double lambda) const override { return full_.accepts_parameter(lambda); }
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                double lambda) const override;
 
   const SymmetricSubspace& subspace() const { return subspace_; }
 
  private:
-  ParametrizedObjective& full_;
+  const ParametrizedObjective& full_;
   const SymmetricSubspace& subspace_;
   Eigen::SparseMatrix<double> basis_transpose_;
   Eigen::SparseMatrix<double> pattern_;
-  Eigen::VectorXd full_gradient_;
-  Eigen::SparseMatrix<double> full_hessian_;
 };
 
 }  // namespace growshell

@@ -6,14 +6,14 @@
 
 namespace growshell {
 
-HessianNegativeCount::HessianNegativeCount(SparseObjective& objective,
+HessianNegativeCount::HessianNegativeCount(const ParametrizedObjective& family,
                                            const std::vector<Eigen::Index>& fixed_dofs)
-    : objective_(objective), hessian_(objective.hessian_pattern()), fixed_(hessian_, fixed_dofs) {
+    : family_(family), hessian_(family.hessian_pattern()), fixed_(hessian_, fixed_dofs) {
   factorization_.analyze(hessian_);
 }
 
-int HessianNegativeCount::at(const Eigen::Ref<const Eigen::VectorXd>& x) {
-  objective_.evaluate(x, nullptr, &hessian_);
+int HessianNegativeCount::at(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda) {
+  family_.evaluate(x, lambda, nullptr, &hessian_);
   fixed_.apply(hessian_);
   const Eigen::Map<const Eigen::VectorXd> values(hessian_.valuePtr(), hessian_.nonZeros());
   if (!values.allFinite())
@@ -28,7 +28,7 @@ int HessianNegativeCount::at(const Eigen::Ref<const Eigen::VectorXd>& x) {
 int HessianNegativeCount::negative_orthogonal_to(
     const Eigen::Ref<const Eigen::VectorXd>& direction) const {
   if (negative_ < 0)
-    throw std::logic_error("HessianNegativeCount::negative_orthogonal_to: call at(x) first");
+    throw std::logic_error("HessianNegativeCount::negative_orthogonal_to: call at(x, lambda) first");
   if (direction.size() != hessian_.rows())
     throw std::invalid_argument("HessianNegativeCount::negative_orthogonal_to: the direction has " +
                                 std::to_string(direction.size()) + " entries, the Hessian " +

@@ -11,7 +11,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "core/sparse_objective.hpp"
+#include "core/parametrized_objective.hpp"
 #include "solvers/newton/fixed_dof_elimination.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
 
@@ -19,14 +19,15 @@ namespace growshell {
 
 class HessianNegativeCount {
  public:
-  /// Holds a reference: `objective` must outlive it. Throws as FixedDofElimination for bad
+  /// Holds a reference: `family` must outlive it. Throws as FixedDofElimination for bad
   /// fixed dofs.
-  HessianNegativeCount(SparseObjective& objective, const std::vector<Eigen::Index>& fixed_dofs);
+  HessianNegativeCount(const ParametrizedObjective& family,
+                       const std::vector<Eigen::Index>& fixed_dofs);
 
-  /// Negative eigenvalues of the Hessian at x with the fixed dofs removed. Throws
+  /// Negative eigenvalues of the Hessian at (x, lambda) with the fixed dofs removed. Throws
   /// std::runtime_error (naming the cause) if the Hessian is not finite, cannot be factorised
   /// or is singular (a zero pivot: the count is then undefined).
-  int at(const Eigen::Ref<const Eigen::VectorXd>& x);
+  int at(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda);
 
   /// Negative eigenvalues of the Hessian of the last at(), H_f (fixed dofs removed),
   /// restricted to the free vectors orthogonal to `direction` (its fixed entries are
@@ -43,7 +44,7 @@ class HessianNegativeCount {
   int negative_orthogonal_to(const Eigen::Ref<const Eigen::VectorXd>& direction) const;
 
  private:
-  SparseObjective& objective_;
+  const ParametrizedObjective& family_;
   Eigen::SparseMatrix<double> hessian_;
   FixedDofElimination fixed_;
   SymmetricIndefiniteFactorization factorization_;

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/objective_at_parameter.hpp"
 #include "libshell/analysis/core_radius.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
@@ -42,6 +43,10 @@ struct RelaxedDisc {
   double radius = 0.0;  // R_eff = sqrt(reference area / pi), the limit surface's radius
 };
 
+// Far below buckling (phi_c = 10.6 h^2 = 4e-3) and in the linear regime (nonlinear
+// corrections ~ phi).
+constexpr double kExcessAngle = 1e-3;
+
 RelaxedDisc relax_flat_disc(int rings) {
   DiscMeshOptions mesh;
   mesh.rings = rings;
@@ -49,18 +54,16 @@ RelaxedDisc relax_flat_disc(int rings) {
   settings.material = {1e4, kPoisson};
   settings.thickness = constant_thickness(0.02);
   RelaxedDisc out{ShellModel(make_disc_mesh(mesh), settings), {}, 0.0};
-  // Far below buckling (phi_c = 10.6 h^2 = 4e-3) and in the linear regime (nonlinear
-  // corrections ~ phi).
-  out.model.set_excess_angle(1e-3);
   const Eigen::VectorXd& X = out.model.reference_positions();
   const Eigen::MatrixX3d P =
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   std::vector<int> candidates(out.model.sheet_vertices().begin(), out.model.sheet_vertices().end());
   NewtonOptions newton;
   Eigen::VectorXd g0;
-  out.model.evaluate(X, &g0, nullptr);
+  out.model.evaluate(X, kExcessAngle, &g0, nullptr);
   newton.gradient_tolerance = 1e-9 * g0.lpNorm<Eigen::Infinity>();
-  const NewtonResult r = NewtonSolver(newton).minimize(out.model, X, rigid_motion_pinned_dofs(P, candidates));
+  ObjectiveAtParameter energy(out.model, kExcessAngle);
+  const NewtonResult r = NewtonSolver(newton).minimize(energy, X, rigid_motion_pinned_dofs(P, candidates));
   EXPECT_TRUE(r.converged()) << r.message;
   out.x = r.x;
   out.radius = std::sqrt(out.model.reference().reference_area() / std::numbers::pi);
@@ -75,7 +78,7 @@ TEST(CoreRadius, FlatGrownDiscMatchesTheDisclinationProfile) {
   // at 16 rings: +0.0085, -0.0034, +0.0057 for 0.25, 0.5, 0.9; 0.02 R bounds all three.
   RelaxedDisc d = relax_flat_disc(16);
   for (const double f : {0.25, 0.5, 0.9}) {
-    const CoreRadius c = stretching_core_radius(d.model, d.x, f);
+    const CoreRadius c = stretching_core_radius(d.model, d.x, kExcessAngle, f);
     EXPECT_NEAR(c.radius / d.radius, analytic_quantile(f), 0.02) << "fraction " << f;
     RecordProperty("error_" + std::to_string(f), std::to_string(c.radius / d.radius - analytic_quantile(f)));
     EXPECT_GT(c.stretching_energy, 0.0);
@@ -87,8 +90,8 @@ TEST(CoreRadius, ErrorShrinksWithTheMesh) {
   RelaxedDisc fine = relax_flat_disc(16);
   const double exact = analytic_quantile(0.5);
   const double e_coarse =
-      std::abs(stretching_core_radius(coarse.model, coarse.x).radius / coarse.radius - exact);
-  const double e_fine = std::abs(stretching_core_radius(fine.model, fine.x).radius / fine.radius - exact);
+      std::abs(stretching_core_radius(coarse.model, coarse.x, kExcessAngle).radius / coarse.radius - exact);
+  const double e_fine = std::abs(stretching_core_radius(fine.model, fine.x, kExcessAngle).radius / fine.radius - exact);
   EXPECT_LT(e_fine, 0.75 * e_coarse + 1e-3) << e_coarse << " -> " << e_fine;
 }
 
@@ -98,12 +101,12 @@ TEST(CoreRadius, RejectsBadInputNamingIt) {
   ShellModel model(make_disc_mesh(mesh), ShellModelSettings{});
   const Eigen::VectorXd X = model.reference_positions();
   try {
-    stretching_core_radius(model, X, 1.5);
+    stretching_core_radius(model, X, kExcessAngle, 1.5);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("fraction"), std::string::npos);
   }
-  EXPECT_THROW(stretching_core_radius(model, X.head(6), 0.5), std::invalid_argument);
+  EXPECT_THROW(stretching_core_radius(model, X.head(6), kExcessAngle, 0.5), std::invalid_argument);
 }
 
 }  // namespace

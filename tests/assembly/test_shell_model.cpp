@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <thread>
 
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
@@ -49,15 +50,14 @@ constexpr double kStep = 1e-6;
 
 /// Checks the energy against energy_breakdown, and the gradient, the Hessian and
 /// d(gradient)/d(phi_e) against central differences (relative 1e-6), at x and phi_e.
-void expect_derivatives_match_finite_differences(ShellModel& model, const Eigen::VectorXd& x,
+void expect_derivatives_match_finite_differences(const ShellModel& model, const Eigen::VectorXd& x,
                                                  double phi_e) {
-  model.set_excess_angle(phi_e);
   const Eigen::Index n = model.dimension();
   Eigen::VectorXd g;
   Eigen::SparseMatrix<double> H = model.hessian_pattern();
-  const double E = model.evaluate(x, &g, &H);
-  EXPECT_NEAR(E, model.evaluate(x, nullptr, nullptr), 1e-12 * E);
-  EXPECT_NEAR(E, model.energy_breakdown(x).total(), 1e-12 * E);
+  const double E = model.evaluate(x, phi_e, &g, &H);
+  EXPECT_NEAR(E, model.evaluate(x, phi_e, nullptr, nullptr), 1e-12 * E);
+  EXPECT_NEAR(E, model.energy_breakdown(x, phi_e).total(), 1e-12 * E);
 
   Eigen::VectorXd fd_g(n);
   Eigen::MatrixXd fd_H(n, n);
@@ -65,8 +65,8 @@ void expect_derivatives_match_finite_differences(ShellModel& model, const Eigen:
     Eigen::VectorXd xp = x, xm = x, gp, gm;
     xp(i) += kStep;
     xm(i) -= kStep;
-    const double Ep = model.evaluate(xp, &gp, nullptr);
-    const double Em = model.evaluate(xm, &gm, nullptr);
+    const double Ep = model.evaluate(xp, phi_e, &gp, nullptr);
+    const double Em = model.evaluate(xm, phi_e, &gm, nullptr);
     fd_g(i) = (Ep - Em) / (2 * kStep);
     fd_H.col(i) = (gp - gm) / (2 * kStep);
   }
@@ -74,14 +74,11 @@ void expect_derivatives_match_finite_differences(ShellModel& model, const Eigen:
   const Eigen::MatrixXd H_dense = Eigen::MatrixXd(H).selfadjointView<Eigen::Upper>();
   EXPECT_LE((H_dense - fd_H).norm(), 1e-6 * H_dense.norm());
 
-  const Eigen::VectorXd dg = model.gradient_excess_angle_derivative(x);
+  const Eigen::VectorXd dg = model.gradient_parameter_derivative(x, phi_e);
   const double dphi = 1e-6;
   Eigen::VectorXd gp, gm;
-  model.set_excess_angle(phi_e + dphi);
-  model.evaluate(x, &gp, nullptr);
-  model.set_excess_angle(phi_e - dphi);
-  model.evaluate(x, &gm, nullptr);
-  model.set_excess_angle(phi_e);
+  model.evaluate(x, phi_e + dphi, &gp, nullptr);
+  model.evaluate(x, phi_e - dphi, &gm, nullptr);
   EXPECT_LE((dg - (gp - gm) / (2 * dphi)).norm(), 1e-6 * dg.norm());
 }
 
@@ -133,20 +130,18 @@ TEST(ShellModel, IrregularFlatDiscHasNoEnergyAndItsRigidMotionsNone) {
   for (Eigen::Index v = 0; v < x.size() / 3; ++v)
     x.segment<3>(3 * v) = R * x.segment<3>(3 * v) + Eigen::Vector3d(0.1, 0.2, 0.3);
   Eigen::VectorXd g;
-  EXPECT_LT(model.evaluate(model.reference_positions(), nullptr, nullptr), 1e-25);
-  EXPECT_LT(model.evaluate(x, &g, nullptr), 1e-20);
+  EXPECT_LT(model.evaluate(model.reference_positions(), 0.0, nullptr, nullptr), 1e-25);
+  EXPECT_LT(model.evaluate(x, 0.0, &g, nullptr), 1e-20);
   EXPECT_LT(g.cwiseAbs().maxCoeff(), 1e-10 * model.natural_force_scale());
 }
 
 TEST(ShellModel, AssemblyIsIndependentOfThreadCount) {
   ShellModel one(small_disc(5), settings_with(0.02, 2, 1));
   ShellModel two(small_disc(5), settings_with(0.02, 2, 2));
-  one.set_excess_angle(2.0);
-  two.set_excess_angle(2.0);
   const Eigen::VectorXd x = bent_state(one, 0.01, 2);
   Eigen::VectorXd g1, g2;
   Eigen::SparseMatrix<double> H1 = one.hessian_pattern(), H2 = two.hessian_pattern();
-  const double E1 = one.evaluate(x, &g1, &H1), E2 = two.evaluate(x, &g2, &H2);
+  const double E1 = one.evaluate(x, 2.0, &g1, &H1), E2 = two.evaluate(x, 2.0, &g2, &H2);
   // Only the order of the floating-point sums differs.
   EXPECT_NEAR(E1, E2, 1e-13 * E1);
   EXPECT_LE((g1 - g2).norm(), 1e-12 * g1.norm());
@@ -154,6 +149,43 @@ TEST(ShellModel, AssemblyIsIndependentOfThreadCount) {
              Eigen::Map<Eigen::VectorXd>(H2.valuePtr(), H2.nonZeros()))
                 .norm(),
             1e-12 * H1.norm());
+}
+
+TEST(ShellModel, EvaluationDependsOnlyOnItsArgumentsNotOnEarlierCalls) {
+  // phi_e is an argument, not state: interleaved evaluations at two angles, and the same ones
+  // from two threads at once on one model, give the same bits as a fresh model.
+  const ShellModel model(small_disc(5), settings_with(0.02, 2, 1));
+  const Eigen::VectorXd x = bent_state(model, 0.01, 4);
+  struct Result {
+    double energy = 0.0;
+    Eigen::VectorXd gradient, derivative;
+    Eigen::SparseMatrix<double> hessian;
+  };
+  const auto at = [&](const ShellModel& m, double phi) {
+    Result r;
+    r.hessian = m.hessian_pattern();
+    r.energy = m.evaluate(x, phi, &r.gradient, &r.hessian);
+    r.derivative = m.gradient_parameter_derivative(x, phi);
+    return r;
+  };
+  const auto same = [](const Result& a, const Result& b) {
+    return a.energy == b.energy && a.gradient == b.gradient && a.derivative == b.derivative &&
+           Eigen::Map<const Eigen::VectorXd>(a.hessian.valuePtr(), a.hessian.nonZeros()) ==
+               Eigen::Map<const Eigen::VectorXd>(b.hessian.valuePtr(), b.hessian.nonZeros());
+  };
+  const Result first = at(model, 1.0);
+  const Result other = at(model, 2.0);
+  const Result again = at(model, 1.0);
+  EXPECT_TRUE(same(first, again));
+  EXPECT_NE(first.energy, other.energy);
+  EXPECT_TRUE(same(first, at(ShellModel(small_disc(5), settings_with(0.02, 2, 1)), 1.0)));
+  Result in_thread_a, in_thread_b;
+  std::thread a([&] { in_thread_a = at(model, 1.0); });
+  std::thread b([&] { in_thread_b = at(model, 2.0); });
+  a.join();
+  b.join();
+  EXPECT_TRUE(same(in_thread_a, first));
+  EXPECT_TRUE(same(in_thread_b, other));
 }
 
 TEST(ShellModel, RigidMotionsOfTheFlatStateCarryNoEnergyOrForce) {
@@ -164,7 +196,7 @@ TEST(ShellModel, RigidMotionsOfTheFlatStateCarryNoEnergyOrForce) {
   Eigen::VectorXd x = model.reference_positions();
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) x.segment<3>(3 * v) = R * x.segment<3>(3 * v) + t;
   Eigen::VectorXd g;
-  const double E = model.evaluate(x, &g, nullptr);
+  const double E = model.evaluate(x, 0.0, &g, nullptr);
   // Scales: a unit strain would cost Y h * area ~ 600 J; a 1/R curvature Y h^3 ~ 0.08 J.
   EXPECT_LT(std::abs(E), 1e-24);
   EXPECT_LT(g.lpNorm<Eigen::Infinity>(), 1e-10 * model.natural_force_scale());
@@ -172,14 +204,14 @@ TEST(ShellModel, RigidMotionsOfTheFlatStateCarryNoEnergyOrForce) {
 
 TEST(ShellModel, EnergyOfABentStateIsInvariantUnderRotation) {
   ShellModel model(small_disc(5), settings_with(0.02));
-  model.set_excess_angle(2.5);
+  const double phi_e = 2.5;
   const Eigen::VectorXd x = bent_state(model, 0.01, 3);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(2.2, Eigen::Vector3d(1.0, 1.0, -0.4).normalized()).toRotationMatrix();
   Eigen::VectorXd y = x;
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) y.segment<3>(3 * v) = R * x.segment<3>(3 * v);
   Eigen::VectorXd gx, gy;
-  const double Ex = model.evaluate(x, &gx, nullptr), Ey = model.evaluate(y, &gy, nullptr);
+  const double Ex = model.evaluate(x, phi_e, &gx, nullptr), Ey = model.evaluate(y, phi_e, &gy, nullptr);
   EXPECT_NEAR(Ex, Ey, 1e-12 * Ex);
   for (Eigen::Index v = 0; v < x.size() / 3; ++v)
     EXPECT_LE((R * gx.segment<3>(3 * v) - gy.segment<3>(3 * v)).norm(), 1e-10 * gx.norm());
@@ -191,7 +223,7 @@ TEST(ShellModel, UniformInPlaneStretchGivesTheClosedFormEnergy) {
   const double h = 0.02, s = 0.03;
   ShellModel model(small_disc(6), settings_with(h));
   const Eigen::VectorXd x = (1 + s) * model.reference_positions();
-  const ShellEnergyBreakdown parts = model.energy_breakdown(x);
+  const ShellEnergyBreakdown parts = model.energy_breakdown(x, 0.0);
   const double e = ((1 + s) * (1 + s) - 1) / 2;
   const double expected = stretching_modulus(model.settings().material, h) * 2 *
                           (1 + model.settings().material.poisson_ratio) * e * e *
@@ -209,10 +241,9 @@ TEST(ShellModel, FlatDiscGrownButNotRelaxedGivesTheClosedFormEnergy) {
   const double h = 0.02;
   for (double phi : {0.5, 3.0, 4 * std::numbers::pi}) {
     ShellModel model(small_disc(6), settings_with(h));
-    model.set_excess_angle(phi);
     const double lambda = 1 + phi / (2 * std::numbers::pi);
     const double eps_t = 0.5 * (1 / (lambda * lambda) - 1);
-    const ShellEnergyBreakdown parts = model.energy_breakdown(model.reference_positions());
+    const ShellEnergyBreakdown parts = model.energy_breakdown(model.reference_positions(), phi);
     const double area = model.reference().reference_area();
     const double expected =
         stretching_modulus(model.settings().material, h) * eps_t * eps_t * lambda * area;
@@ -241,14 +272,20 @@ TEST(ShellModel, BadInputIsRejectedWithTheOffendingValueNamed) {
   s.thickness = [](const Eigen::Vector3d& X) { return X.x() > 0.5 ? -1.0 : 0.02; };
   EXPECT_THROW(ShellModel(small_disc(), s), std::invalid_argument);
   ShellModel model(small_disc(), settings_with(0.02));
-  EXPECT_THROW(model.set_excess_angle(std::nan("")), std::invalid_argument);
-  EXPECT_THROW(model.evaluate(Eigen::VectorXd::Zero(5), nullptr, nullptr), std::invalid_argument);
+  const Eigen::VectorXd flat = model.reference_positions();
+  EXPECT_THROW(model.evaluate(flat, std::nan(""), nullptr, nullptr), std::invalid_argument);
+  EXPECT_THROW(model.evaluate(flat, -7.0, nullptr, nullptr), std::invalid_argument);
+  EXPECT_THROW(model.gradient_parameter_derivative(flat, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(model.energy_breakdown(flat, -7.0), std::invalid_argument);
+  EXPECT_FALSE(model.accepts_parameter(-2 * std::numbers::pi));
+  EXPECT_TRUE(model.accepts_parameter(-6.0));
+  EXPECT_THROW(model.evaluate(Eigen::VectorXd::Zero(5), 0.0, nullptr, nullptr), std::invalid_argument);
 }
 
 TEST(ShellModel, DegenerateConfigurationGivesNonFiniteEnergyNotACrash) {
   ShellModel model(small_disc(), settings_with(0.02));
   const Eigen::VectorXd collapsed = Eigen::VectorXd::Zero(model.dimension());
-  EXPECT_FALSE(std::isfinite(model.evaluate(collapsed, nullptr, nullptr)));
+  EXPECT_FALSE(std::isfinite(model.evaluate(collapsed, 0.0, nullptr, nullptr)));
 }
 
 }  // namespace
@@ -283,7 +320,7 @@ TEST(ShellModel, CylinderBendingEnergyConvergesToTheAnalyticValue) {
     }
     const double area = model.reference().reference_area();
     const double expected = bending_modulus(material, h) * area / (rho * rho);
-    errors.push_back(std::abs(model.energy_breakdown(x).bending / expected - 1.0));
+    errors.push_back(std::abs(model.energy_breakdown(x, 0.0).bending / expected - 1.0));
   }
   std::printf("cylinder bending energy relative errors: %.3e %.3e %.3e\n", errors[0], errors[1],
               errors[2]);

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/objective_at_parameter.hpp"
 #include "core/parametrized_objective.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
@@ -272,8 +273,8 @@ TEST(ContactPenalty, HessianPatternHoldsEveryNonzero) {
 TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
   const FoldedScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
-  ShellModel shell = scene.model;
-  shell.set_excess_angle(0.5);
+  const ShellModel& shell = scene.model;
+  const double phi_e = 0.5;
   ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 3e3, n);
   PenalizedEnergy total(shell, penalty);
   EXPECT_EQ(total.dimension(), n);
@@ -295,24 +296,24 @@ TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
   Eigen::VectorXd g, g_shell, g_penalty;
   Eigen::SparseMatrix<double> H = merged, H_shell = shell.hessian_pattern(),
                               H_penalty = penalty.hessian_pattern();
-  const double E = total.evaluate(scene.x, &g, &H);
-  const double E_shell = shell.evaluate(scene.x, &g_shell, &H_shell);
+  const double E = total.evaluate(scene.x, phi_e, &g, &H);
+  const double E_shell = shell.evaluate(scene.x, phi_e, &g_shell, &H_shell);
   const double P = penalty.evaluate(scene.x, &g_penalty, &H_penalty);
   ASSERT_GT(P, 0.0);
   EXPECT_NEAR(E, E_shell + P, 1e-14 * (E_shell + P));
-  EXPECT_EQ(total.last_penalty(), P);
   // Same additions in the same order: equal up to the last bit or so.
   const Eigen::VectorXd g_sum = g_shell + g_penalty;
   EXPECT_LE((g - g_sum).cwiseAbs().maxCoeff(), 1e-14 * g_sum.cwiseAbs().maxCoeff());
   const Eigen::MatrixXd H_sum = Eigen::MatrixXd(H_shell) + Eigen::MatrixXd(H_penalty);
   EXPECT_LE((Eigen::MatrixXd(H) - H_sum).cwiseAbs().maxCoeff(),
             1e-14 * H_sum.cwiseAbs().maxCoeff());
-  EXPECT_EQ(total.evaluate(scene.x, nullptr, nullptr), E);
+  EXPECT_EQ(total.evaluate(scene.x, phi_e, nullptr, nullptr), E);
 
   // The Newton solver accepts it (upper pattern with every diagonal) and lowers the energy.
   NewtonOptions options;
   options.max_iterations = 3;
-  const NewtonResult result = NewtonSolver(options).minimize(total, scene.x);
+  ObjectiveAtParameter total_at(total, phi_e);
+  const NewtonResult result = NewtonSolver(options).minimize(total_at, scene.x);
   EXPECT_TRUE(std::isfinite(result.energy));
   EXPECT_LT(result.energy, E);
   EXPECT_GT(result.iterations, 0);
@@ -321,22 +322,22 @@ TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
 TEST(ContactPenalty, PenalizedEnergyIsAFamilyInTheShellsExcessAngle) {
   const FoldedScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
-  ShellModel shell = scene.model;
-  shell.set_excess_angle(0.5);
+  const ShellModel& shell = scene.model;
   ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 3e3, n);
   PenalizedEnergy total(shell, penalty);
-  ParametrizedObjective& family = total;
-  EXPECT_EQ(family.parameter(), 0.5);
-  family.set_parameter(0.7);
-  EXPECT_EQ(shell.excess_angle(), 0.7);
+  const ParametrizedObjective& family = total;
+  EXPECT_TRUE(family.accepts_parameter(0.7));
+  EXPECT_FALSE(family.accepts_parameter(-7.0));
   // P does not depend on phi_e: the family's d(gradient)/d(phi_e) is the shell's, bit for bit,
-  // and its energy follows the shell's angle.
-  const Eigen::VectorXd derivative = family.gradient_parameter_derivative(scene.x);
-  EXPECT_TRUE(derivative == shell.gradient_excess_angle_derivative(scene.x));
+  // and its energy follows the shell's at every angle.
   const double P = penalty.evaluate(scene.x, nullptr, nullptr);
   ASSERT_GT(P, 0.0);
-  EXPECT_EQ(family.evaluate(scene.x, nullptr, nullptr),
-            shell.evaluate(scene.x, nullptr, nullptr) + P);
+  for (const double phi_e : {0.5, 0.7}) {
+    const Eigen::VectorXd derivative = family.gradient_parameter_derivative(scene.x, phi_e);
+    EXPECT_TRUE(derivative == shell.gradient_parameter_derivative(scene.x, phi_e));
+    EXPECT_EQ(family.evaluate(scene.x, phi_e, nullptr, nullptr),
+              shell.evaluate(scene.x, phi_e, nullptr, nullptr) + P);
+  }
 }
 
 TEST(ContactPenalty, StiffnessScaleAndMeanSpacing) {
@@ -362,10 +363,10 @@ TEST(ContactPenalty, RejectsBadInputNamingIt) {
   Eigen::SparseMatrix<double> wrong(n, n);
   expect_invalid([&] { penalty.evaluate(scene.x, nullptr, &wrong); }, "hessian_pattern");
   ContactPenalty bigger(scene.proxy, scene.pairs, 0.1, 1.0, n + 1);
-  ShellModel shell = scene.model;
+  const ShellModel& shell = scene.model;
   expect_invalid([&] { PenalizedEnergy(shell, bigger); }, "penalty has " + std::to_string(n + 1));
   PenalizedEnergy total(shell, penalty);
-  expect_invalid([&] { total.evaluate(scene.x, nullptr, &wrong); }, "hessian_pattern");
+  expect_invalid([&] { total.evaluate(scene.x, 0.5, nullptr, &wrong); }, "hessian_pattern");
 }
 
 }  // namespace

@@ -480,18 +480,19 @@ TEST(ConstrainedMinimizer, CurvedConstraintUsesLagrangianHessian) {
 // whole load: sum mu_k = sum f_i.
 class LoadedShell : public SparseObjective {
  public:
-  LoadedShell(ShellModel& shell, Eigen::VectorXd load) : shell_(shell), load_(std::move(load)) {}
+  /// The flat, ungrown shell (phi_e = 0) under the load.
+  LoadedShell(const ShellModel& shell, Eigen::VectorXd load) : shell_(shell), load_(std::move(load)) {}
   Eigen::Index dimension() const override { return shell_.dimension(); }
   Eigen::SparseMatrix<double> hessian_pattern() const override { return shell_.hessian_pattern(); }
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* gradient,
                   Eigen::SparseMatrix<double>* hessian_upper) override {
-    const double e = shell_.evaluate(x, gradient, hessian_upper);
+    const double e = shell_.evaluate(x, 0.0, gradient, hessian_upper);
     if (gradient != nullptr) *gradient += load_;
     return e + load_.dot(x);
   }
 
  private:
-  ShellModel& shell_;
+  const ShellModel& shell_;
   Eigen::VectorXd load_;  // dE/dx of the load: +f on the z dof of a point pulled down by f
 };
 

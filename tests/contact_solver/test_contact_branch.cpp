@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "libshell/assembly/shell_growth_family.hpp"
+#include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
@@ -66,10 +66,9 @@ TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
       d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
       [&](const ContactBranchSample& s) { with_contact.push_back(s); });
   EXPECT_EQ(t.steps, 4);
-  ShellGrowthFamily family(d.model);
   std::vector<BranchSample> plain;
   ArclengthOptions a = o.arclength;
-  trace_branch_along(family, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, a,
+  trace_branch_along(d.model, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, a,
                      [&](const BranchSample& s) { plain.push_back(s); });
   ASSERT_EQ(with_contact.size(), plain.size());
   for (std::size_t i = 0; i < plain.size(); ++i) {
@@ -140,10 +139,10 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   int compared = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (samples[i].active_pairs == 0) continue;
-    d.model.set_excess_angle(samples[i].sample.parameter);
+    ObjectiveAtParameter energy(d.model, samples[i].sample.parameter);
     ContactGapConstraints gaps(d.proxy, samples[i].pairs, kH, d.model.dimension());
     const ReducedInertia reduced =
-        contact_constrained_inertia(d.model, gaps, states[i], samples[i].forces, 0.0, d.pinned);
+        contact_constrained_inertia(energy, gaps, states[i], samples[i].forces, 0.0, d.pinned);
     EXPECT_EQ(reduced.negative, samples[i].sample.negative_eigenvalues)
         << "at phi_e = " << samples[i].sample.parameter;
     EXPECT_EQ(reduced.constraints, samples[i].active_pairs);
@@ -159,7 +158,6 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
     if (samples[i].active_pairs > 0 && samples[i].sample.negative_eigenvalues == 0) last = i;
   ASSERT_LT(last, samples.size()) << "no stable sample in contact";
   const double phi = samples[last].sample.parameter;
-  d.model.set_excess_angle(phi);
   ContactSolveOptions ip = d.ipopt_options();
   ip.violation_tolerance = 1e-3 * kH;
   ip.minimizer.tolerance = 1e-10;
@@ -167,14 +165,15 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   ip.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * kH;
   ip.newton.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
   const ContactSolveResult constrained =
-      solve_contact_equilibrium(d.model, d.proxy, states[last], d.pinned, ip);
+      solve_contact_equilibrium(d.model, phi, d.proxy, states[last], d.pinned, ip);
   ASSERT_TRUE(constrained.converged) << constrained.message;
   ASSERT_TRUE(constrained.used_contact);
   const ContactCandidates pairs = samples[last].pairs;
   std::vector<double> error;
   for (const double factor : {1.0, 10.0, 100.0}) {
     ContactPenalty penalty(d.proxy, pairs, kH, factor * o.stiffness, d.model.dimension());
-    PenalizedEnergy energy(d.model, penalty);
+    PenalizedEnergy family(d.model, penalty);
+    ObjectiveAtParameter energy(family, phi);
     NewtonOptions n;
     n.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
     const NewtonResult r = NewtonSolver(n).minimize(energy, constrained.x, d.pinned);
@@ -374,10 +373,10 @@ TEST(ContactGrowth, StepsThroughContactAreStableAndKeepTheThickness) {
     EXPECT_TRUE(close.empty()) << "at phi_e = " << s.sample.parameter;
     if (s.active_pairs == 0) continue;
     ++touching;
-    d.model.set_excess_angle(s.sample.parameter);
+    ObjectiveAtParameter energy(d.model, s.sample.parameter);
     ContactGapConstraints gaps(d.proxy, s.pairs, kH, d.model.dimension());
     const ReducedInertia reduced =
-        contact_constrained_inertia(d.model, gaps, s.sample.x, s.forces, 0.0, d.pinned);
+        contact_constrained_inertia(energy, gaps, s.sample.x, s.forces, 0.0, d.pinned);
     EXPECT_EQ(reduced.negative, 0) << "at phi_e = " << s.sample.parameter;
   }
   EXPECT_GT(touching, 0) << "no contact below phi_e = 6.4";

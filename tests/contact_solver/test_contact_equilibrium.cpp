@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "libshell/analysis/contact_zones.hpp"
+#include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
@@ -178,8 +179,9 @@ struct TwoStrips {
   Eigen::VectorXd propped(double z_prop, double drop) {
     NewtonOptions o;
     o.gradient_tolerance = 1e-10 * kForce;
+    ObjectiveAtParameter energy(model, 0.0);  // no growth in this scene
     const NewtonResult r =
-        NewtonSolver(o).minimize(model, state(z_prop, drop), fixed_and_propped());
+        NewtonSolver(o).minimize(energy, state(z_prop, drop), fixed_and_propped());
     EXPECT_TRUE(r.converged()) << r.message;
     return r.x;
   }
@@ -251,7 +253,7 @@ TEST(ContactEquilibrium, PressedStripStopsAtDistanceHAndForcesBalanceTheLoad) {
   const double start_gap = closest_pair(s.proxy, x0, h + o.candidate_margin, o.exclusion_radius);
   ASSERT_GT(start_gap, h);
   ASSERT_LT(start_gap, h + o.candidate_margin);
-  const ContactSolveResult r = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
+  const ContactSolveResult r = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_TRUE(r.used_contact);
   EXPECT_EQ(r.rounds, 1);
@@ -275,7 +277,7 @@ TEST(ContactEquilibrium, PressedStripStopsAtDistanceHAndForcesBalanceTheLoad) {
   gaps.evaluate(r.x, c, &jac);
   const Eigen::VectorXd push = jac.transpose() * r.forces;
   Eigen::VectorXd g;
-  s.model.evaluate(r.x, &g, nullptr);
+  s.model.evaluate(r.x, 0.0, &g, nullptr);
   Eigen::Vector3d on_top = Eigen::Vector3d::Zero(), on_bottom = Eigen::Vector3d::Zero(),
                   clamp = Eigen::Vector3d::Zero();
   for (const Eigen::Index d : s.top_dofs) on_top(d % 3) += push(d);
@@ -340,7 +342,7 @@ TEST(ContactEquilibrium, UnloadedStripUsesTheNoContactFastPath) {
   const double h = TwoStrips::kH;
   const ContactSolveOptions o = s.options();
   const Eigen::VectorXd x0 = s.state(h + 2.0 * o.candidate_margin, 0.0);
-  const ContactSolveResult r = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
+  const ContactSolveResult r = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_FALSE(r.used_contact);
   EXPECT_EQ(r.forces.size(), 0);
@@ -361,8 +363,9 @@ TEST(ContactEquilibrium, FarStateEqualsPlainNewtonExactly) {
   const ContactSolveOptions o = s.options();
   // Loaded (clamps lowered by 0.5 h, from a kinked start) but with 3 h of clearance.
   const Eigen::VectorXd x0 = s.state(4.0 * h, 0.5 * h);
-  const ContactSolveResult r = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
-  const NewtonResult plain = NewtonSolver(o.newton).minimize(s.model, x0, s.fixed());
+  const ContactSolveResult r = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
+  ObjectiveAtParameter energy(s.model, 0.0);
+  const NewtonResult plain = NewtonSolver(o.newton).minimize(energy, x0, s.fixed());
   ASSERT_TRUE(plain.converged()) << plain.message;
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_FALSE(r.used_contact);
@@ -386,7 +389,7 @@ TEST(ContactEquilibrium, PairMissedAtTheStartTriggersASecondRound) {
   o.candidate_margin = 0.05 * h;
   const Eigen::VectorXd x0 = s.propped(1.1 * h, 0.25 * h);
   ASSERT_TRUE(near_contact_pairs(s.proxy, x0, h + o.candidate_margin, o.exclusion_radius).empty());
-  const ContactSolveResult r = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
+  const ContactSolveResult r = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_EQ(r.rounds, 2);
   EXPECT_TRUE(r.used_contact);
@@ -395,7 +398,7 @@ TEST(ContactEquilibrium, PairMissedAtTheStartTriggersASecondRound) {
   expect_no_pair_too_close(s, o, r);
 
   o.max_rounds = 1;
-  const ContactSolveResult once = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
+  const ContactSolveResult once = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
   EXPECT_FALSE(once.converged);
   EXPECT_EQ(once.rounds, 1);
   EXPECT_FALSE(once.used_contact);
@@ -404,7 +407,8 @@ TEST(ContactEquilibrium, PairMissedAtTheStartTriggersASecondRound) {
   EXPECT_TRUE(once.x.allFinite());
   // x is the state of the last solve: the Newton pass, which ends with the layers 0.83 h
   // apart (measured; 17 iterations in all for the two rounds above).
-  EXPECT_TRUE(once.x == NewtonSolver(o.newton).minimize(s.model, x0, s.fixed()).x);
+  ObjectiveAtParameter energy(s.model, 0.0);
+  EXPECT_TRUE(once.x == NewtonSolver(o.newton).minimize(energy, x0, s.fixed()).x);
 }
 
 // relax_with_contact (the penalty relaxation of the growth path) from a start 4 h above the
@@ -455,12 +459,12 @@ TEST(RelaxWithContact, BoundedNewtonStepsCannotPassThroughALayer) {
   Eigen::VectorXd unbounded = x0;
   double energy = 0.0;
   std::string message;
-  relax_with_contact(s.model, s.proxy, unbounded, held, o, newton, &energy, &message);
+  relax_with_contact(s.model, 0.0, s.proxy, unbounded, held, o, newton, &energy, &message);
   EXPECT_LT(over_bottom(unbounded), -h) << "the unbounded relaxation should pass through";
 
   newton.max_step_inf_norm = 0.25 * h;
   Eigen::VectorXd bounded = x0;
-  ASSERT_TRUE(relax_with_contact(s.model, s.proxy, bounded, held, o, newton, &energy, &message))
+  ASSERT_TRUE(relax_with_contact(s.model, 0.0, s.proxy, bounded, held, o, newton, &energy, &message))
       << message;
   EXPECT_GT(over_bottom(bounded), h - 0.01 * h);
   EXPECT_GE(closest_pair(s.proxy, bounded, 2.0 * h, o.exclusion_radius), h - 0.01 * h);
@@ -472,10 +476,10 @@ TEST(ContactEquilibrium, WarmRestartAtTheSolutionStaysThere) {
   const double h = TwoStrips::kH;
   const ContactSolveOptions o = s.options();
   const Eigen::VectorXd x0 = s.propped(1.1 * h, 0.25 * h);
-  const ContactSolveResult first = solve_contact_equilibrium(s.model, s.proxy, x0, s.fixed(), o);
+  const ContactSolveResult first = solve_contact_equilibrium(s.model, 0.0, s.proxy, x0, s.fixed(), o);
   ASSERT_TRUE(first.converged) << first.message;
   const ContactSolveResult again =
-      solve_contact_equilibrium(s.model, s.proxy, first.x, s.fixed(), o, &first);
+      solve_contact_equilibrium(s.model, 0.0, s.proxy, first.x, s.fixed(), o, &first);
   ASSERT_TRUE(again.converged) << again.message;
   // Measured: 12 iterations cold, 1 warm, moving x by 1.2e-11 h and the force sum by 1e-12.
   EXPECT_LE(again.iterations, 5);
@@ -505,7 +509,7 @@ TEST(ContactEquilibrium, RejectsBadOptions) {
   const Eigen::VectorXd x0 = s.state(4.0 * TwoStrips::kH, 0.0);
   auto message_of = [&](const ContactSolveOptions& o, const Eigen::VectorXd& x) {
     try {
-      solve_contact_equilibrium(s.model, s.proxy, x, s.fixed(), o);
+      solve_contact_equilibrium(s.model, 0.0, s.proxy, x, s.fixed(), o);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }

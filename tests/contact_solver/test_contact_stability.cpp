@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
@@ -122,7 +123,7 @@ TEST(ContactStability, MatchesDenseReducedHessianOfTheLagrangian) {
   const double force = scene.model.natural_force_scale();
 
   Eigen::SparseMatrix<double> energy_upper = scene.model.hessian_pattern();
-  scene.model.evaluate(scene.x, nullptr, &energy_upper);
+  scene.model.evaluate(scene.x, 0.0, nullptr, &energy_upper);
   const Eigen::MatrixXd energy_hessian = dense_symmetric(energy_upper);
   RowMajor jacobian_sparse = gaps.jacobian_pattern();
   Eigen::VectorXd values;
@@ -145,8 +146,9 @@ TEST(ContactStability, MatchesDenseReducedHessianOfTheLagrangian) {
         mu(k) = s * force * 0.9 * unit(rng);
       }
     }
+    ObjectiveAtParameter rest_energy(scene.model, 0.0);  // no growth in these scenes
     const ReducedInertia r =
-        contact_constrained_inertia(scene.model, gaps, scene.x, mu, s * force, scene.fixed);
+        contact_constrained_inertia(rest_energy, gaps, scene.x, mu, s * force, scene.fixed);
 
     Eigen::SparseMatrix<double> w = gaps.hessian_pattern();
     gaps.weighted_hessian(scene.x, mu, w);
@@ -185,7 +187,7 @@ TEST(ContactStability, NoActivePairGivesThePlainInertiaOfTheEnergy) {
   ContactGapConstraints gaps = scene.gaps(false);
   const double force = scene.model.natural_force_scale();
   Eigen::SparseMatrix<double> energy_upper = scene.model.hessian_pattern();
-  scene.model.evaluate(scene.x, nullptr, &energy_upper);
+  scene.model.evaluate(scene.x, 0.0, nullptr, &energy_upper);
   const Eigen::MatrixXd h = dense_symmetric(energy_upper)(scene.free, scene.free);
   const Eigen::VectorXd e = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(h).eigenvalues();
   ASSERT_GT(relative_gap(e), 1e-9);
@@ -198,7 +200,8 @@ TEST(ContactStability, NoActivePairGivesThePlainInertiaOfTheEnergy) {
 
   // Zero multipliers, threshold 0 (strictly above is active): nothing active.
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(gaps.count());
-  const ReducedInertia r0 = contact_constrained_inertia(scene.model, gaps, scene.x, zero, 0.0,
+  ObjectiveAtParameter rest_energy(scene.model, 0.0);  // no growth in these scenes
+  const ReducedInertia r0 = contact_constrained_inertia(rest_energy, gaps, scene.x, zero, 0.0,
                                                         scene.fixed);
   EXPECT_EQ(r0.constraints, 0);
   EXPECT_EQ(r0.negative, plain);
@@ -210,7 +213,7 @@ TEST(ContactStability, NoActivePairGivesThePlainInertiaOfTheEnergy) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   Eigen::VectorXd remnants(gaps.count());
   for (Eigen::Index k = 0; k < remnants.size(); ++k) remnants(k) = 1e-9 * force * unit(rng);
-  const ReducedInertia r1 = contact_constrained_inertia(scene.model, gaps, scene.x, remnants,
+  const ReducedInertia r1 = contact_constrained_inertia(rest_energy, gaps, scene.x, remnants,
                                                         1e-6 * force, scene.fixed);
   EXPECT_EQ(r1.constraints, 0);
   EXPECT_EQ(r1.negative, plain);
@@ -360,9 +363,10 @@ TEST(ContactStability, CoincidingActivePairsAreReportedAsRankDeficient) {
   const double force = scene.model.natural_force_scale();
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(gaps.count());
   mu(first) = mu(second) = force;
+  ObjectiveAtParameter rest_energy(scene.model, 0.0);  // no growth in these scenes
   std::string message = "no exception";
   try {
-    contact_constrained_inertia(scene.model, gaps, scene.x, mu, 0.1 * force, scene.fixed);
+    contact_constrained_inertia(rest_energy, gaps, scene.x, mu, 0.1 * force, scene.fixed);
   } catch (const std::runtime_error& e) {
     message = e.what();
   }
@@ -370,7 +374,7 @@ TEST(ContactStability, CoincidingActivePairsAreReportedAsRankDeficient) {
   EXPECT_NE(message.find("1 of its 2 rows"), std::string::npos) << message;
   // Either one alone is fine.
   mu(second) = 0.0;
-  EXPECT_EQ(contact_constrained_inertia(scene.model, gaps, scene.x, mu, 0.1 * force, scene.fixed)
+  EXPECT_EQ(contact_constrained_inertia(rest_energy, gaps, scene.x, mu, 0.1 * force, scene.fixed)
                 .constraints,
             1);
 }
@@ -444,7 +448,7 @@ TEST(ContactStability, PressedStripEquilibriumIsStable) {
   o.minimizer.complementarity_tolerance = 1e-10 * h * force;
   o.minimizer.dual_infeasibility_tolerance = 1e-10 * force;
   o.newton.gradient_tolerance = 1e-10 * force;
-  const ContactSolveResult r = solve_contact_equilibrium(model, proxy, x0, fixed, o);
+  const ContactSolveResult r = solve_contact_equilibrium(model, 0.0, proxy, x0, fixed, o);
   ASSERT_TRUE(r.converged) << r.message;
   ASSERT_TRUE(r.used_contact) << r.message;
 
@@ -452,8 +456,9 @@ TEST(ContactStability, PressedStripEquilibriumIsStable) {
   // Strongly active: above 1e-3 of the largest force. Ipopt's barrier remnants on the other
   // pairs are ~1e-13 N (tolerance 1e-10 h F over gaps of order h), eight decades lower.
   const double threshold = 1e-3 * r.forces.maxCoeff();
+  ObjectiveAtParameter rest_energy(model, 0.0);  // no growth in these scenes
   const ReducedInertia inertia =
-      contact_constrained_inertia(model, gaps, r.x, r.forces, threshold, fixed);
+      contact_constrained_inertia(rest_energy, gaps, r.x, r.forces, threshold, fixed);
   EXPECT_EQ(inertia.negative, 0);
   EXPECT_EQ(inertia.zero, 0);
   EXPECT_GE(inertia.constraints, 1);
@@ -462,7 +467,7 @@ TEST(ContactStability, PressedStripEquilibriumIsStable) {
 
   // The same from the dense pieces, with the smallest reduced eigenvalue clearly positive.
   Eigen::SparseMatrix<double> energy_upper = model.hessian_pattern();
-  model.evaluate(r.x, nullptr, &energy_upper);
+  model.evaluate(r.x, 0.0, nullptr, &energy_upper);
   Eigen::SparseMatrix<double> w = gaps.hessian_pattern();
   gaps.weighted_hessian(r.x, r.forces, w);
   RowMajor jacobian = gaps.jacobian_pattern();

@@ -20,7 +20,6 @@ using test_support::GrownDisc;
 
 TEST(ExclusionAtTheApex, ClosestPairStraddlesTheApexAtTheExclusionRadius) {
   GrownDisc& d = disc();
-  d.model.set_excess_angle(GrownDisc::kStart);
   const double h = GrownDisc::kH;
   double previous = 0.0;
   for (const double factor : {0.5 * std::numbers::pi, 2.0, 3.0, 4.0}) {

@@ -34,9 +34,9 @@ class RingFamily : public ParametrizedObjective {
     H.makeCompressed();
     return H;
   }
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::VectorXd* g,
-                  Eigen::SparseMatrix<double>* H) override {
-    const double x = z(0), y = z(1), r2 = x * x + y * y, s = r2 - lambda_;
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& z, double lambda, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* H) const override {
+    const double x = z(0), y = z(1), r2 = x * x + y * y, s = r2 - lambda;
     double E = s * s / 4 + tilt_ * x * y;
     Eigen::VectorXd grad = Eigen::VectorXd::Zero(n_);
     grad(0) = s * x + tilt_ * y;
@@ -62,9 +62,8 @@ class RingFamily : public ParametrizedObjective {
     }
     return E;
   }
-  void set_parameter(double lambda) override { lambda_ = lambda; }
-  double parameter() const override { return lambda_; }
-  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& z) override {
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                                double) const override {
     Eigen::VectorXd d = Eigen::VectorXd::Zero(n_);
     d(0) = -z(0);
     d(1) = -z(1);
@@ -75,7 +74,6 @@ class RingFamily : public ParametrizedObjective {
  private:
   int n_;
   double tilt_;
-  double lambda_ = 1.0;
 };
 
 Eigen::MatrixXd dense_upper_symmetric(const Eigen::SparseMatrix<double>& upper) {
@@ -85,7 +83,7 @@ Eigen::MatrixXd dense_upper_symmetric(const Eigen::SparseMatrix<double>& upper) 
 
 TEST(PhaseConditionedFamily, GradientAndHessianMatchFiniteDifferences) {
   RingFamily ring(3, 0.05);
-  ring.set_parameter(1.3);
+  const double lambda = 1.3;
   Eigen::VectorXd c(5);
   c << 0.2, -0.7, 0.0, 0.4, 0.1;
   PhaseConditionedFamily family(ring, c, 0.25);
@@ -94,21 +92,23 @@ TEST(PhaseConditionedFamily, GradientAndHessianMatchFiniteDifferences) {
   z << 0.8, 0.3, -0.2, 0.5, 0.1, 0.7;
   Eigen::VectorXd g;
   Eigen::SparseMatrix<double> H = family.hessian_pattern();
-  family.evaluate(z, &g, &H);
+  family.evaluate(z, lambda, &g, &H);
   const Eigen::MatrixXd Hd = dense_upper_symmetric(H);
   const double step = 1e-6;
   for (int i = 0; i < 6; ++i) {
     Eigen::VectorXd zp = z, zm = z, gp, gm;
     zp(i) += step;
     zm(i) -= step;
-    const double fd = (family.evaluate(zp, &gp, nullptr) - family.evaluate(zm, &gm, nullptr)) / (2 * step);
+    const double fd =
+        (family.evaluate(zp, lambda, &gp, nullptr) - family.evaluate(zm, lambda, &gm, nullptr)) /
+        (2 * step);
     EXPECT_NEAR(g(i), fd, 1e-8) << "gradient entry " << i;
     for (int j = 0; j < 6; ++j)
       EXPECT_NEAR(Hd(j, i), (gp(j) - gm(j)) / (2 * step), 1e-7) << "Hessian entry " << j << ", " << i;
   }
   // The last gradient entry is the constraint c . x - b; d/dlambda leaves it alone.
   EXPECT_NEAR(g(5), c.dot(z.head(5)) - 0.25, 1e-15);
-  EXPECT_EQ(family.gradient_parameter_derivative(z)(5), 0.0);
+  EXPECT_EQ(family.gradient_parameter_derivative(z, lambda)(5), 0.0);
 }
 
 TEST(PhaseConditionedFamily, RejectsABadFunctional) {
@@ -155,8 +155,7 @@ TEST(PhaseConditionTrace, HoldsAnExactSymmetryOrbitWithAVanishingMultiplier) {
     // Stable on the hyperplane: the orbit's neutral direction is left out of the count.
     EXPECT_EQ(s.negative_eigenvalues, 0);
     Eigen::VectorXd g;
-    ring.set_parameter(s.parameter);
-    ring.evaluate(s.x, &g, nullptr);
+    ring.evaluate(s.x, s.parameter, &g, nullptr);
     EXPECT_NEAR(phase_multiplier(g, Eigen::Vector4d(0, 1, 0, 0), {}), 0.0, 1e-10);
     ++checked;
   }
@@ -176,8 +175,7 @@ TEST(PhaseConditionTrace, TheMultiplierIsTheForceThatBreaksTheSymmetry) {
   for (const BranchSample& s : samples) {
     EXPECT_NEAR(s.x(1), 0.0, 1e-12);
     Eigen::VectorXd g;
-    ring.set_parameter(s.parameter);
-    ring.evaluate(s.x, &g, nullptr);
+    ring.evaluate(s.x, s.parameter, &g, nullptr);
     EXPECT_NEAR(g(0), 0.0, 1e-10);
     EXPECT_NEAR(phase_multiplier(g, Eigen::Vector4d(0, 1, 0, 0), {}), -tilt * s.x(0), 1e-10);
   }

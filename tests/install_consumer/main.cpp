@@ -4,12 +4,14 @@
 #include <cstdio>
 #include <type_traits>
 
+#include "core/objective_at_parameter.hpp"
 #include "core/sparse_objective.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/triangle_mesh.hpp"
 
 // The installed libshell headers find the core interfaces they implement.
-static_assert(std::is_base_of_v<growshell::SparseObjective, growshell::ShellModel>);
+static_assert(std::is_base_of_v<growshell::ParametrizedObjective, growshell::ShellModel>);
+static_assert(std::is_base_of_v<growshell::SparseObjective, growshell::ObjectiveAtParameter>);
 
 namespace {
 

@@ -666,15 +666,14 @@ TEST(SceneBuilders, SmallDiscSceneBuildsAValidShellModel) {
   EXPECT_EQ(model.settings().quadrature_degree, 2);
   // The flat, ungrown reference is stress-free.
   const Eigen::VectorXd x = model.reference_positions();
-  EXPECT_NEAR(model.energy_breakdown(x).total(), 0.0, 1e-20);
+  EXPECT_NEAR(model.energy_breakdown(x, 0.0).total(), 0.0, 1e-20);
   // Grown by phi_e but held flat, every point has abar = diag(1, lambda^2) and a = diag(1, 1)
   // in its (e_r, e_phi) frame, so eps = diag(0, (1 - lambda^2) / (2 lambda^2)) and U_s = eps^2
   // exactly, and E_s = Y h / (2 (1 - nu^2)) eps^2 (grown area) with grown area = lambda times
   // the current one. That checks that Y, nu, h and the growth centre reached the model; both
   // identities hold pointwise, so only rounding (relative 1e-12) separates the sides.
   const double phi = 0.5;
-  model.set_excess_angle(phi);
-  const ShellEnergyBreakdown e = model.energy_breakdown(x);
+  const ShellEnergyBreakdown e = model.energy_breakdown(x, phi);
   const double lambda = circumferential_stretch(phi);
   const double eps = (1.0 - lambda * lambda) / (2.0 * lambda * lambda);
   const double expected = 2e4 * 0.02 / (2.0 * (1.0 - 0.09)) * eps * eps * e.grown_area;

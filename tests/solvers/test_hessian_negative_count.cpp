@@ -16,20 +16,25 @@ namespace growshell {
 namespace {
 
 /// E(x) = 1/2 x^T A(x) x with A = tridiag(c, d_i + s x_0^2, c): its Hessian at x = 0 is the
-/// tridiagonal matrix, so the count is set by the diagonal d and the state moves it.
-class Tridiagonal final : public SparseObjective {
+/// tridiagonal matrix, so the count is set by the diagonal d and the state moves it. The
+/// family's parameter does not enter.
+class Tridiagonal final : public ParametrizedObjective {
  public:
   explicit Tridiagonal(std::vector<double> d, double c) : d_(std::move(d)), c_(c) {}
   Eigen::Index dimension() const override { return static_cast<Eigen::Index>(d_.size()); }
   Eigen::SparseMatrix<double> hessian_pattern() const override {
     return upper(Eigen::VectorXd::Zero(dimension()));
   }
-  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* g,
-                  Eigen::SparseMatrix<double>* H) override {
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* H) const override {
     const Eigen::MatrixXd A = dense(x);
     if (g) *g = A * x;
     if (H) *H = upper(x);
     return 0.5 * x.dot(A * x);
+  }
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                double) const override {
+    return Eigen::VectorXd::Zero(x.size());
   }
   Eigen::MatrixXd dense(const Eigen::Ref<const Eigen::VectorXd>& x) const {
     const Eigen::Index n = dimension();
@@ -67,30 +72,30 @@ TEST(HessianNegativeCount, EqualsTheDenseCountWithFixedDofsRemoved) {
   Tridiagonal f({-2.0, 1.0, -0.5, 3.0, -1.5, 2.0}, 0.3);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
   HessianNegativeCount all(f, {});
-  EXPECT_EQ(all.at(zero), dense_count(f.dense(zero)));
-  EXPECT_EQ(all.at(zero), 3);
+  EXPECT_EQ(all.at(zero, 0.0), dense_count(f.dense(zero)));
+  EXPECT_EQ(all.at(zero, 0.0), 3);
   // Fixing dofs 0 and 4 (both negative on the diagonal) leaves the block of 1, 2, 3, 5.
   HessianNegativeCount fixed(f, {0, 4});
   const std::vector<int> keep{1, 2, 3, 5};
   Eigen::MatrixXd block(4, 4);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) block(i, j) = f.dense(zero)(keep[i], keep[j]);
-  EXPECT_EQ(fixed.at(zero), dense_count(block));
-  EXPECT_EQ(fixed.at(zero), 1);
+  EXPECT_EQ(fixed.at(zero, 0.0), dense_count(block));
+  EXPECT_EQ(fixed.at(zero, 0.0), 1);
   // The state shifts the diagonal by x_0^2 = 4: everything is positive, and the same object
   // (analysed once) factorises the new values.
   Eigen::VectorXd x = zero;
   x(0) = 2.0;
-  EXPECT_EQ(all.at(x), 0);
+  EXPECT_EQ(all.at(x, 0.0), 0);
 }
 
 TEST(HessianNegativeCount, ASingularOrNonFiniteHessianIsAnError) {
   Tridiagonal f({0.0, 1.0, 2.0}, 0.0);  // exactly singular
   HessianNegativeCount count(f, {});
-  EXPECT_THROW(count.at(Eigen::VectorXd::Zero(3)), std::runtime_error);
+  EXPECT_THROW(count.at(Eigen::VectorXd::Zero(3), 0.0), std::runtime_error);
   Eigen::VectorXd nan = Eigen::VectorXd::Zero(3);
   nan(0) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(count.at(nan), std::runtime_error);
+  EXPECT_THROW(count.at(nan, 0.0), std::runtime_error);
 }
 
 /// Negative eigenvalues of Z^T A Z, Z an orthonormal basis of the vectors on the `keep`
@@ -115,7 +120,7 @@ TEST(HessianNegativeCount, OrthogonalToADirectionEqualsTheDenseProjectedCount) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
   HessianNegativeCount count(f, {4});
   const std::vector<int> keep{0, 1, 2, 3, 5};
-  ASSERT_EQ(count.at(zero), 2);
+  ASSERT_EQ(count.at(zero, 0.0), 2);
   // Directions of every kind: unit vectors of negative and positive diagonal entries, and
   // fixed pseudo-random mixtures (the entry of the fixed dof 4 is ignored).
   std::vector<Eigen::VectorXd> directions;
@@ -150,7 +155,7 @@ TEST(HessianNegativeCount, ANearlyNeutralModeLeavesTheCountWhileAnotherCrossingI
     for (const double d2 : {-0.7, 0.7}) {
       Tridiagonal f({eps, 1.0, d2, 2.0}, 0.0);
       HessianNegativeCount count(f, {});
-      const int full = count.at(zero);
+      const int full = count.at(zero, 0.0);
       EXPECT_EQ(full, (eps < 0) + (d2 < 0));
       EXPECT_EQ(count.negative_orthogonal_to(d), d2 < 0 ? 1 : 0) << "eps " << eps << ", d2 " << d2;
     }
@@ -161,7 +166,7 @@ TEST(HessianNegativeCount, OrthogonalToNeedsAFactorisationAndAFreeFiniteDirectio
   Tridiagonal f({1.0, 2.0, 3.0}, 0.0);
   HessianNegativeCount count(f, {1});
   EXPECT_THROW(count.negative_orthogonal_to(Eigen::VectorXd::Ones(3)), std::logic_error);
-  count.at(Eigen::VectorXd::Zero(3));
+  count.at(Eigen::VectorXd::Zero(3), 0.0);
   EXPECT_THROW(count.negative_orthogonal_to(Eigen::VectorXd::Ones(2)), std::invalid_argument);
   EXPECT_THROW(count.negative_orthogonal_to(Eigen::VectorXd::Unit(3, 1)), std::invalid_argument);
   Eigen::VectorXd nan = Eigen::VectorXd::Ones(3);

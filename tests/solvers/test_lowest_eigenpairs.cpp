@@ -1,3 +1,4 @@
+#include "core/objective_at_parameter.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
 #include <gtest/gtest.h>
@@ -296,20 +297,20 @@ TEST(LowestEigenpairs, FlatDiscPastBucklingHasADoubleNegativePair) {
   ShellModelSettings settings;
   settings.thickness = constant_thickness(0.04);
   ShellModel model(make_disc_mesh(mesh), settings);
-  model.set_excess_angle(0.03);
+  ObjectiveAtParameter energy(model, 0.03);  // phi_e past the flat disc's n = 2 threshold
   const Eigen::VectorXd x0 = model.reference_positions();
   const auto pins = rigid_motion_pinned_dofs(vertex_rows(x0), model.sheet_vertices());
   Eigen::VectorXd g0;
-  model.evaluate(x0, &g0, nullptr);
+  energy.evaluate(x0, &g0, nullptr);
   NewtonOptions newton;
   newton.gradient_tolerance = 1e-9 * g0.lpNorm<Eigen::Infinity>();
-  const NewtonResult flat = NewtonSolver(newton).minimize(model, x0, pins);
+  const NewtonResult flat = NewtonSolver(newton).minimize(energy, x0, pins);
   ASSERT_TRUE(flat.converged()) << flat.message;
   const Eigen::VectorXd& x = flat.x;
   ASSERT_EQ(x(Eigen::seqN(2, x.size() / 3, 3)).cwiseAbs().maxCoeff(), 0.0);
 
   SpMat hessian = model.hessian_pattern();
-  model.evaluate(x, nullptr, &hessian);
+  energy.evaluate(x, nullptr, &hessian);
   SpMat eliminated = hessian;
   FixedDofElimination(eliminated, pins).apply(eliminated);
   SymmetricIndefiniteFactorization ldlt;
@@ -321,7 +322,7 @@ TEST(LowestEigenpairs, FlatDiscPastBucklingHasADoubleNegativePair) {
   // Free-floating: the exact pair of the symmetric disc.
   EigenpairOptions options;
   options.count = 2;
-  const Eigenpairs free_pairs = lowest_eigenpairs(model, x, {}, options);
+  const Eigenpairs free_pairs = lowest_eigenpairs(energy, x, {}, options);
   ASSERT_TRUE(free_pairs.converged) << free_pairs.message;
   const SpMat full_hessian = hessian.selfadjointView<Eigen::Upper>();
   const Eigen::MatrixXd full_dense(full_hessian);
@@ -347,7 +348,7 @@ TEST(LowestEigenpairs, FlatDiscPastBucklingHasADoubleNegativePair) {
 
   // Pinned: the count of negative eigenvalues equals the LDL^T inertia.
   options.count = negatives + 2;
-  const Eigenpairs pinned = lowest_eigenpairs(model, x, pins, options);
+  const Eigenpairs pinned = lowest_eigenpairs(energy, x, pins, options);
   ASSERT_TRUE(pinned.converged) << pinned.message;
   EXPECT_EQ((pinned.values.array() < 0.0).count(), negatives);
   EXPECT_GT(pinned.values[negatives], 0.0);

@@ -9,7 +9,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "libshell/assembly/shell_growth_family.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/rigid_motion.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
@@ -26,9 +25,8 @@ Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>> as_rows(const Ei
 
 struct DiscCone {
   ShellModel model;
-  ShellGrowthFamily family;
   std::vector<Eigen::Index> pins;
-  explicit DiscCone(ShellModel m) : model(std::move(m)), family(model) {
+  explicit DiscCone(ShellModel m) : model(std::move(m)) {
     pins = mirror_axis_pinned_dofs(as_rows(model.reference_positions()), model.sheet_vertices(),
                                    Eigen::Vector3d::Zero());
   }
@@ -45,12 +43,12 @@ BranchSample traced_cone(DiscCone& disc, int folds) {
   entry.thickness = 0.04;
   entry.radius = 1.0;
   entry.folds = folds;
-  const ConeBranchEntry e = enter_cone_branch(disc.family, disc.model, entry, disc.pins, o);
+  const ConeBranchEntry e = enter_cone_branch(disc.model, disc.model, entry, disc.pins, o);
   if (!e.found) throw std::runtime_error(e.message);
   o.parameter_max = e.branch_point.parameter + 0.3;
   o.max_steps = 12;
   std::vector<BranchSample> samples;
-  trace_branch_along(disc.family, e.start, e.branch_point.parameter, e.mode, 0.0, disc.pins, o,
+  trace_branch_along(disc.model, e.start, e.branch_point.parameter, e.mode, 0.0, disc.pins, o,
                      [&](const BranchSample& s) { samples.push_back(s); });
   if (samples.empty()) throw std::runtime_error("no cone sample");
   return samples.back();
@@ -68,7 +66,7 @@ TEST(TurnFreeStabilityIndex, IsTheSameForEveryRigidPlacementOfTheCone) {
   for (const int folds : {2, 3}) {
     DiscCone disc = hexagonal_disc();
     const BranchSample cone = traced_cone(disc, folds);
-    TurnFreeStabilityIndex index(disc.family, disc.model, disc.pins);
+    TurnFreeStabilityIndex index(disc.model, disc.model, disc.pins);
     const int placed = index.at(cone.x, cone.parameter);
     EXPECT_EQ(index.last_pins(), disc.pins) << "the trace's pins hold this state";
 
@@ -96,8 +94,8 @@ TEST(TurnFreeStabilityIndex, IsTheSameForEveryRigidPlacementOfTheCone) {
 TEST(TurnFreeStabilityIndex, NeedsSixPinsAndAConditionOfAtLeastOne) {
   DiscCone disc = hexagonal_disc();
   std::vector<Eigen::Index> five(disc.pins.begin(), disc.pins.begin() + 5);
-  EXPECT_THROW(TurnFreeStabilityIndex(disc.family, disc.model, five), std::invalid_argument);
-  EXPECT_THROW(TurnFreeStabilityIndex(disc.family, disc.model, disc.pins, 0.5), std::invalid_argument);
+  EXPECT_THROW(TurnFreeStabilityIndex(disc.model, disc.model, five), std::invalid_argument);
+  EXPECT_THROW(TurnFreeStabilityIndex(disc.model, disc.model, disc.pins, 0.5), std::invalid_argument);
 }
 
 }  // namespace
