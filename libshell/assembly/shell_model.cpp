@@ -183,8 +183,8 @@ void scatter_hessian(const LoopPatch& patch, const ElementMatrix<Nodes>& H,
 /// Energy parts of element e (see ShellModel::element_breakdown).
 template <int Nodes>
 ShellEnergyBreakdown element_parts(const ReferenceQuadrature& reference,
-                                   const ElementGrowth& growth, const Material& material, const LoopPatch& patch,
-                                   Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
+                                   const ElementGrowth& growth, const Material& material,
+                                   const LoopPatch& patch, Eigen::Index e, const Eigen::Ref<const Eigen::VectorXd>& x) {
   ShellEnergyBreakdown out;
   const int m = reference.points_per_element();
   const Eigen::Matrix<double, Nodes, 3> X = element_nodes<Nodes>(x, patch);
@@ -309,14 +309,13 @@ double ShellModel::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double e
 #pragma omp for schedule(static)
     for (Eigen::Index e = 0; e < n_el; ++e) {
       const LoopPatch& patch = patches_.patch[static_cast<std::size_t>(e)];
+      const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
       if (reference_.is_regular(e)) {
-        const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
         energy += element_terms<12>(reference_, growth, settings_.material, patch, e, x, order,
                                     G12, H12);
         if (g_t) scatter_forces<12>(patch, G12, *g_t);
         if (h_t) scatter_hessian<12>(patch, H12, pattern_, h_t);
       } else {
-        const ElementGrowth growth{&growth_parts_[static_cast<std::size_t>(e * m)], excess_angle};
         energy += element_terms<Eigen::Dynamic>(reference_, growth, settings_.material, patch, e,
                                                 x, order, G, H);
         if (g_t) scatter_forces<Eigen::Dynamic>(patch, G, *g_t);

@@ -28,10 +28,6 @@ CircumferentialDirection circumferential_direction(const CircumferentialGrowth& 
 
 }  // namespace
 
-double circumferential_stretch(double excess_angle) {
-  return 1.0 + excess_angle / (2.0 * std::numbers::pi);
-}
-
 double excess_angle_weight(const CircumferentialGrowth& growth, double r) {
   const double eps = growth.smoothing_radius;
   if (eps == 0.0) return 1.0;

@@ -33,7 +33,9 @@ struct CircumferentialGrowth {
 };
 
 /// Circumferential stretch lambda = 1 + phi_e / (2 pi) (dimensionless).
-double circumferential_stretch(double excess_angle);
+inline double circumferential_stretch(double excess_angle) {
+  return 1.0 + excess_angle / (2.0 * std::numbers::pi);
+}
 
 /// Weight w(r) of the excess angle at distance r (m) from the centre, of the growth's
 /// smoothing profile; 1 for epsilon = 0.
@@ -56,7 +58,7 @@ TargetMetricParts target_metric_parts(const CircumferentialGrowth& growth, const
 /// flops (inline: assembly calls it at every quadrature point), bit for bit what
 /// target_metric returns at the same point.
 inline Eigen::Matrix2d target_metric(const TargetMetricParts& parts, double excess_angle) {
-  const double lambda = 1.0 + parts.weight * excess_angle / (2.0 * std::numbers::pi);
+  const double lambda = circumferential_stretch(parts.weight * excess_angle);
   return parts.reference_metric +
          (lambda * lambda - 1.0) * parts.circumferential * parts.circumferential.transpose();
 }
@@ -64,7 +66,7 @@ inline Eigen::Matrix2d target_metric(const TargetMetricParts& parts, double exce
 /// d abar / d phi_e = (lambda w / pi) t t^T from the parts.
 inline Eigen::Matrix2d target_metric_excess_angle_derivative(const TargetMetricParts& parts,
                                                              double excess_angle) {
-  const double lambda = 1.0 + parts.weight * excess_angle / (2.0 * std::numbers::pi);
+  const double lambda = circumferential_stretch(parts.weight * excess_angle);
   return (lambda * parts.weight / std::numbers::pi) * parts.circumferential *
          parts.circumferential.transpose();
 }
