@@ -49,6 +49,10 @@ Studies (scene key study.kind):
                pseudo-arclength continuation, with its branch points, folds, contact,
                mid-surface contact, E_b-hat maximum and S4 symmetry loss
                (docs/guide/cone_branch.md)
+  thickness_series
+               the cone_branch study at each thickness of study.thicknesses, with phi_e at
+               the first branch point against c2 h^2 and phi_e^max - 2.57 fitted as A h^p
+               (the paper's Fig. 2; docs/guide/thickness_series.md)
 
 Scene files: docs/scenes.md (every key); examples/scenes/disc_h002.json (the default scene).
 )";
@@ -78,11 +82,21 @@ Studies (study.kind):
                output.write_vtk (docs/guide/cone_branch.md)
                writes DIR/results.json (the key values), branch.csv, events.json, states/,
                record.json, branch.pvd and VTK files, cost.json, scene.json and eb_hat.png
+  thickness_series
+               scene keys: those of cone_branch (its thickness replaced by each value),
+               study.thicknesses (at least two, m), study.phi_max_limit (default 2.57 rad)
+               (docs/guide/thickness_series.md)
+               writes DIR/results.json (the points, the two fits, c2), thickness_series.csv,
+               thickness_series.png, and DIR/point_NNN/, one cone_branch study per thickness
+               (with DIR/sweep_plan.json, sweep.json and sweep.csv, as growshell sweep writes
+               them); --resume goes on with the thicknesses not yet finished
 
-The figure DIR/eb_hat.png is drawn by plot_study.py with /usr/bin/python3 (the environment
-variable GROWSHELL_PYTHON names another interpreter) when it can import matplotlib; otherwise
-it is skipped with a note, and the study stands.
-Exit status: 0 the study completed, 3 its trace ended early (results.json "end" says why),
+The figure (DIR/eb_hat.png, plot_study.py; DIR/thickness_series.png, plot_thickness_series.py)
+is drawn with /usr/bin/python3 (the environment variable GROWSHELL_PYTHON names another
+interpreter) when it can import matplotlib; otherwise it is skipped with a note, and the study
+stands.
+Exit status: 0 the study completed, 3 its trace (for a series: one of its traces) ended early
+(results.json "end" says why),
 2 bad input.
 )";
 
@@ -247,11 +261,14 @@ int run_study(const RunCommand& c) {
   if (!c.out.empty()) apply_override(scene, "output.directory", c.out);
   validate_scene(scene);
   const std::string dir = scene.output.directory;
-  check_study_directory(dir, c.existing);
+  check_scene_study_directory(scene, c.existing);
   say("# growshell run: study " + study_kind_name(scene.study.kind) + ", scene " + c.scene_file +
       ", output " + dir);
   const SceneStudyOutcome outcome = run_scene_study(scene, c.existing, say);
-  draw_figure("plot_study.py", dir, "eb_hat.png");
+  if (scene.study.kind == StudyKind::ThicknessSeries)
+    draw_figure("plot_thickness_series.py", dir, "thickness_series.png");
+  else
+    draw_figure("plot_study.py", dir, "eb_hat.png");
   if (!outcome.completed) {
     std::fprintf(stderr, "growshell: the study ended early: %s\n", outcome.end.c_str());
     return 3;

@@ -152,6 +152,10 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepParameter>& paramete
 }
 
 Scene sweep_point_scene(const Scene& base, const SweepPoint& point, const std::string& sweep_dir) {
+  if (base.study.kind == StudyKind::ThicknessSeries)
+    throw std::invalid_argument(
+        "a thickness_series scene cannot be swept: it is itself a sweep over thickness; sweep "
+        "the cone_branch study (study.kind = \"cone_branch\") instead");
   Scene scene = base;
   try {
     for (const auto& [key, value] : point.settings) apply_override(scene, key, value);

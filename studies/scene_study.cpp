@@ -3,20 +3,37 @@
 #include <stdexcept>
 
 #include "studies/cone_branch_study.hpp"
+#include "studies/thickness_series_study.hpp"
 
 namespace growshell {
+
+void check_scene_study_directory(const Scene& scene, ExistingOutput existing) {
+  switch (scene.study.kind) {
+    case StudyKind::ConeBranch:
+      check_study_directory(scene.output.directory, existing);
+      return;
+    case StudyKind::ThicknessSeries:
+      check_thickness_series_directory(scene.output.directory, existing);
+      return;
+  }
+  throw std::logic_error("check_scene_study_directory: a study kind without a directory check");
+}
 
 SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,
                                   const StudyProgress& progress) {
   validate_scene(scene);
   const std::string& dir = scene.output.directory;
-  check_study_directory(dir, existing);
+  check_scene_study_directory(scene, existing);
   switch (scene.study.kind) {
     case StudyKind::ConeBranch: {
       ConeBranchStudyOptions options = cone_branch_study_options(scene);
       if (existing == ExistingOutput::Resume) options.start = ConeBranchStart::LastState;
       const ConeBranchStudy study = run_cone_branch_study(scene, options, dir, progress);
       return {study.results.completed, study.results.end};
+    }
+    case StudyKind::ThicknessSeries: {
+      const ThicknessSeriesResults series = run_thickness_series_study(scene, existing, progress);
+      return {series.completed, series.end};
     }
   }
   throw std::logic_error("run_scene_study: a study kind without a runner");

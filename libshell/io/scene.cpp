@@ -63,7 +63,8 @@ const NameTable<GrowthSmoothingProfile> kSmoothingProfileNames = {
     {GrowthSmoothingProfile::Rational, "rational"}, {GrowthSmoothingProfile::Gaussian, "gaussian"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
-const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"}};
+const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"},
+                                              {StudyKind::ThicknessSeries, "thickness_series"}};
 
 template <class Enum>
 std::string enum_name(const NameTable<Enum>& names, Enum value) {
@@ -129,6 +130,16 @@ Eigen::Vector2d read_point2(const Json& v, const std::string& key) {
   if (!(v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()))
     fail(key + " must be an array of two numbers [x, y] (got " + v.dump() + ")");
   return {v[0].get<double>(), v[1].get<double>()};
+}
+
+std::vector<double> read_number_list(const Json& v, const std::string& key) {
+  if (!v.is_array()) fail(key + " must be an array of numbers (got " + v.dump() + ")");
+  std::vector<double> values;
+  for (const Json& e : v) {
+    if (!e.is_number()) fail(key + " must be an array of numbers (got " + v.dump() + ")");
+    values.push_back(e.get<double>());
+  }
+  return values;
 }
 
 std::uint32_t read_seed(const Json& v, const std::string& key) {
@@ -324,6 +335,12 @@ const Field kFields[] = {
   {"study.core_radius",
    [](Scene& s, const Json& v, const std::string& k) { s.study.core_radius = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.core_radius); }},
+  {"study.thicknesses",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.thicknesses = read_number_list(v, k); },
+   [](const Scene& s) { return Json(s.study.thicknesses); }},
+  {"study.phi_max_limit",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.phi_max_limit = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.phi_max_limit); }},
 };
 // clang-format on
 
@@ -485,6 +502,22 @@ void validate_scene(const Scene& scene) {
   require_at_least(st.eigenmodes, 0, "study.eigenmodes");
   require_positive(st.symmetry_threshold, "study.symmetry_threshold");
   require_nonnegative(st.core_radius, "study.core_radius");
+  require_finite(st.phi_max_limit, "study.phi_max_limit");
+  if (st.kind == StudyKind::ThicknessSeries) {
+    if (st.thicknesses.size() < 2)
+      fail("study.thicknesses must list at least two thicknesses for study.kind = "
+           "\"thickness_series\" (got " + std::to_string(st.thicknesses.size()) + ")");
+    for (std::size_t i = 0; i < st.thicknesses.size(); ++i) {
+      const std::string key = "study.thicknesses[" + std::to_string(i) + "]";
+      require_positive(st.thicknesses[i], key);
+      for (std::size_t j = 0; j < i; ++j)
+        if (st.thicknesses[j] == st.thicknesses[i])
+          fail(key + " = " + format(st.thicknesses[i]) + " is listed twice");
+    }
+  } else if (!st.thicknesses.empty()) {
+    fail("study.thicknesses is read only by study.kind = \"thickness_series\"; the study \"" +
+         enum_name(kStudyKindNames, st.kind) + "\" takes its thickness from the key thickness");
+  }
 }
 
 Scene read_scene(const std::string& path) {

@@ -184,9 +184,13 @@ enum class StudyKind {
   /// The n-fold cone born at the flat sheet's branch point, traced with its special points and
   /// events (studies/cone_branch_study.hpp, docs/guide/cone_branch.md).
   ConeBranch,
+  /// The cone_branch study at each of several thicknesses, with phi_e at the first branch
+  /// point and phi_e^max fitted as power laws of h (studies/thickness_series_study.hpp,
+  /// docs/guide/thickness_series.md).
+  ThicknessSeries,
 };
 
-/// The study's name in scene files: "cone_branch".
+/// The study's name in scene files: "cone_branch" or "thickness_series".
 std::string study_kind_name(StudyKind kind);
 
 /// The study a scene asks for and those of its settings that change its results (the
@@ -224,6 +228,13 @@ struct SceneStudy {
   /// Radius (m) about the growth centre within which the sheet is left out of the gap and the
   /// mid-surface contact test, >= 0.
   double core_radius = 0.0;
+  /// thickness_series only: the thicknesses h (m) of its traces, in the order they run; each
+  /// > 0, no two equal, at least two. Each trace is the cone_branch study of this scene with
+  /// `thickness` set to h. Must be empty for the other studies.
+  std::vector<double> thicknesses;
+  /// thickness_series only: the h -> 0 value of phi_e^max (rad) that the fit
+  /// phi_e^max - L = A h^p approaches: 2.57, the h -> 0 cone's (../shared/docs/physics.md).
+  double phi_max_limit = 2.57;
 };
 
 /// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.

@@ -719,3 +719,45 @@ TEST(SceneBuilders, InvalidSceneIsRejectedByTheBuilders) {
 
 }  // namespace
 }  // namespace growshell
+
+namespace growshell {
+namespace {
+
+TEST(Scene, ThicknessSeriesReadsItsThicknessesAndRefusesBadLists) {
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "thickness_series", "thicknesses": [0.04, 0.02, 0.01]}})", "test");
+  EXPECT_EQ(s.study.kind, StudyKind::ThicknessSeries);
+  ASSERT_EQ(s.study.thicknesses.size(), 3u);
+  EXPECT_EQ(s.study.thicknesses[1], 0.02);
+  EXPECT_EQ(s.study.phi_max_limit, 2.57);
+  // It survives the round trip through scene_to_json.
+  const Scene again = parse_scene(scene_to_json(s), "round trip");
+  EXPECT_EQ(again.study.thicknesses, s.study.thicknesses);
+  EXPECT_EQ(study_kind_name(again.study.kind), "thickness_series");
+
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "thickness_series", "thicknesses": [0.04]}})"))
+                .find("at least two"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "thickness_series", "thicknesses": [0.04, -0.02]}})"))
+                .find("study.thicknesses[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "thickness_series", "thicknesses": [0.04, 0.04]}})"))
+                .find("listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "thickness_series", "thicknesses": [0.04, "x"]}})"))
+                .find("array of numbers"),
+            std::string::npos);
+  // The cone_branch study takes its thickness from `thickness`; a list would be ignored.
+  EXPECT_NE(error_of(parse(R"({"study": {"thicknesses": [0.04, 0.02]}})")).find("only by"),
+            std::string::npos);
+  Scene over = default_scene();
+  apply_override(over, "study.kind", "thickness_series");
+  apply_override(over, "study.thicknesses", "[0.03,0.015]");
+  EXPECT_NO_THROW(validate_scene(over));
+  EXPECT_EQ(over.study.thicknesses.back(), 0.015);
+}
+
+}  // namespace
+}  // namespace growshell
