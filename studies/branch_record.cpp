@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-const char* const kRecordFile = "record.json";
+const char* const kRecordFile = BranchRecord::kRecordFileName;
 const char* const kBranchFile = "branch.csv";
 const char* const kEventsFile = "events.json";
 const char* const kCollectionFile = "branch.pvd";

@@ -63,6 +63,9 @@ class BranchRecord {
   /// or written.
   BranchRecord(std::string directory, std::vector<std::string> columns, Start start);
 
+  /// The file of the record's commits, in its directory: "record.json".
+  static constexpr const char* kRecordFileName = "record.json";
+
   /// Whether `directory` holds a committed record (a record.json).
   static bool exists(const std::string& directory);
 

@@ -32,7 +32,8 @@ const nlohmann::json& at_key(const nlohmann::json& document, const std::string& 
 
 }  // namespace
 
-void check_study_directory(const std::string& directory, ExistingOutput existing) {
+void check_output_directory(const std::string& directory, ExistingOutput existing,
+                            const std::string& recorded, const std::string& record_file) {
   std::error_code ec;
   if (!fs::exists(directory, ec)) return;
   if (!fs::is_directory(directory, ec))
@@ -40,13 +41,18 @@ void check_study_directory(const std::string& directory, ExistingOutput existing
                                 "' exists and is not a directory");
   if (fs::is_empty(directory, ec)) return;
   if (existing == ExistingOutput::Refuse)
-    throw std::invalid_argument("output directory '" + directory +
-                                "' is not empty; give --resume to continue the study recorded "
-                                "there, or --overwrite to replace it");
-  if (existing == ExistingOutput::Resume && !BranchRecord::exists(directory))
-    throw std::invalid_argument("output directory '" + directory +
-                                "' holds no study record (record.json) to resume; give "
-                                "--overwrite to replace what is there");
+    throw std::invalid_argument("output directory '" + directory + "' is not empty; give --resume " +
+                                "to continue the " + recorded + " recorded there, or --overwrite " +
+                                "to replace it");
+  if (existing == ExistingOutput::Resume &&
+      !fs::is_regular_file(fs::path(directory) / record_file, ec))
+    throw std::invalid_argument("output directory '" + directory + "' holds no " + recorded +
+                                " record (" + record_file + ") to resume; give --overwrite to " +
+                                "replace what is there");
+}
+
+void check_study_directory(const std::string& directory, ExistingOutput existing) {
+  check_output_directory(directory, existing, "study", BranchRecord::kRecordFileName);
 }
 
 void check_resumable_scene(const std::string& directory, const Scene& scene) {

@@ -16,10 +16,16 @@ enum class ExistingOutput {
   Overwrite,  ///< start a new study there, replacing the earlier study's record
 };
 
-/// Throws std::invalid_argument, naming the directory and what to do, if a study may not
-/// write into `directory` under `existing`: a path that exists and is not a directory; a
-/// non-empty directory under Refuse; a non-empty directory without a study record
-/// (record.json) under Resume. A missing or empty directory is always fine.
+/// Throws std::invalid_argument, naming the directory and what to do, if a run may not write
+/// into `directory` under `existing`: a path that exists and is not a directory; a non-empty
+/// directory under Refuse; a non-empty directory without the file `record_file` (what makes
+/// it resumable) under Resume. `recorded` names what is recorded there in the messages
+/// ("study", "series"). A missing or empty directory is always fine.
+void check_output_directory(const std::string& directory, ExistingOutput existing,
+                            const std::string& recorded, const std::string& record_file);
+
+/// check_output_directory for a study with a branch record: a non-empty directory without
+/// record.json cannot be resumed.
 void check_study_directory(const std::string& directory, ExistingOutput existing);
 
 /// Throws std::invalid_argument, naming the first key that differs, unless `scene` may

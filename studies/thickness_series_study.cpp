@@ -65,6 +65,7 @@ ThicknessSeriesResults summarize_thickness_series(std::vector<ThicknessSeriesPoi
   s.radius = radius;
   s.phi_max_limit = phi_max_limit;
   std::vector<double> h_branch, phi_branch, h_max, phi_max;
+  double c2_sum = 0.0;
   std::string unfinished;
   for (const ThicknessSeriesPoint& p : points) {
     if (p.phi_branch && std::isfinite(*p.phi_branch)) {
@@ -73,7 +74,7 @@ ThicknessSeriesResults summarize_thickness_series(std::vector<ThicknessSeriesPoi
       const double c2 = *p.phi_branch * radius * radius / (p.thickness * p.thickness);
       s.c2_min = s.c2_min ? std::min(*s.c2_min, c2) : c2;
       s.c2_max = s.c2_max ? std::max(*s.c2_max, c2) : c2;
-      s.c2_mean = s.c2_mean.value_or(0.0) + c2;
+      c2_sum += c2;
     }
     if (p.status == "completed" && p.phi_max && std::isfinite(*p.phi_max)) {
       h_max.push_back(p.thickness);
@@ -86,7 +87,7 @@ ThicknessSeriesResults summarize_thickness_series(std::vector<ThicknessSeriesPoi
       unfinished += text.str();
     }
   }
-  if (s.c2_mean) *s.c2_mean /= static_cast<double>(h_branch.size());
+  if (!h_branch.empty()) s.c2_mean = c2_sum / static_cast<double>(h_branch.size());
   s.phi_branch_fit = fit_power_law(h_branch, phi_branch, 0.0);
   s.phi_max_fit = fit_power_law(h_max, phi_max, phi_max_limit);
   s.completed = !points.empty() && unfinished.empty();
@@ -153,19 +154,7 @@ Scene thickness_series_base_scene(const Scene& scene) {
 }
 
 void check_thickness_series_directory(const std::string& directory, ExistingOutput existing) {
-  std::error_code ec;
-  if (!fs::exists(directory, ec)) return;
-  if (!fs::is_directory(directory, ec))
-    throw std::invalid_argument("output directory '" + directory + "' exists and is not a directory");
-  if (fs::is_empty(directory, ec)) return;
-  if (existing == ExistingOutput::Refuse)
-    throw std::invalid_argument("output directory '" + directory +
-                                "' is not empty; give --resume to continue the series recorded "
-                                "there, or --overwrite to replace it");
-  if (existing == ExistingOutput::Resume && !fs::exists(directory + "/sweep_plan.json", ec))
-    throw std::invalid_argument("output directory '" + directory +
-                                "' holds no thickness series (sweep_plan.json) to resume; give "
-                                "--overwrite to replace what is there");
+  check_output_directory(directory, existing, "series", "sweep_plan.json");
 }
 
 ThicknessSeriesResults run_thickness_series_study(const Scene& scene, ExistingOutput existing,
