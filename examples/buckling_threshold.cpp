@@ -38,7 +38,7 @@ int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   examples::CommandLine cl(argc, argv);
   if (cl.help()) {
-    std::puts("usage: buckling_threshold [--h 0.04,0.02,0.01] [--mesh rings|gmsh|lattice]\n"
+    std::puts("usage: buckling_threshold [--h 0.04,0.02,0.01] [--mesh rings|gmsh|gmsh_d4|lattice]\n"
               "                          [--size-slope 0.25,0.1 | --rings 12,24] [--modes 2]\n"
               "                          [--inner-radius RI] [--out FILE.csv]\n"
               "  --size-slope: resolutions of the rings (default) and gmsh families;\n"

@@ -504,7 +504,7 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
   r.thickness = h_;
   r.mode = scene_.continuation.mode;
   r.mesh.family = mesh_family_name(scene_.mesh.family);
-  if (scene_.mesh.family == MeshFamily::Rings || scene_.mesh.family == MeshFamily::Gmsh)
+  if (graded_by_size(scene_.mesh.family))
     r.mesh.size_slope = scene_.mesh.size_slope;
   r.mesh.elements = static_cast<long long>(model_->num_elements());
   r.mesh.unknowns = static_cast<long long>(model_->dimension());

@@ -42,9 +42,9 @@ inline void require_family_reads(const Scene& scene, const std::string& option,
                                  const std::string& value) {
   const MeshFamily family = scene.mesh.family;
   if (option == "--size-slope") {
-    if (family == MeshFamily::Rings || family == MeshFamily::Gmsh) return;
+    if (graded_by_size(family)) return;
     throw std::invalid_argument("--size-slope " + value + " sets the resolution of mesh.family = "
-                                "rings or gmsh; this scene's family does not read it");
+                                "rings, gmsh or gmsh_d4; this scene's family does not read it");
   }
   if (family == MeshFamily::Lattice) return;
   const bool rings = option == "--rings";

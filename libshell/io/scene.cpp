@@ -54,6 +54,7 @@ const NameTable<SceneShape> kShapeNames = {{SceneShape::Disc, "disc"}, {SceneSha
 const NameTable<MeshFamily> kMeshFamilyNames = {{MeshFamily::Lattice, "lattice"},
                                                 {MeshFamily::Rings, "rings"},
                                                 {MeshFamily::Gmsh, "gmsh"},
+                                                {MeshFamily::GmshD4, "gmsh_d4"},
                                                 {MeshFamily::File, "file"}};
 const NameTable<StretchingLaw> kStretchingLawNames = {
     {StretchingLaw::kNeoHookean, "neo_hookean"},
@@ -619,9 +620,7 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 
 double resolved_min_spacing(const Scene& scene) {
   if (scene.mesh.min_spacing) return *scene.mesh.min_spacing;
-  const bool graded_by_size =
-      scene.mesh.family == MeshFamily::Rings || scene.mesh.family == MeshFamily::Gmsh;
-  return (graded_by_size ? 0.25 : 0.5) * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  return (graded_by_size(scene.mesh.family) ? 0.25 : 0.5) * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
 }
 
 double resolved_exclusion_radius(const Scene& scene) {
@@ -644,6 +643,11 @@ ThicknessField scene_thickness_field(const Scene& scene) {
 
 std::string mesh_family_name(MeshFamily family) { return enum_name(kMeshFamilyNames, family); }
 
+bool graded_by_size(MeshFamily family) {
+  return family == MeshFamily::Rings || family == MeshFamily::Gmsh ||
+         family == MeshFamily::GmshD4;
+}
+
 std::string study_kind_name(StudyKind kind) { return enum_name(kStudyKindNames, kind); }
 
 TriangleMesh scene_mesh(const Scene& scene) {
@@ -663,8 +667,10 @@ TriangleMesh scene_mesh(const Scene& scene) {
       options.size_max = size_max;
       return make_ring_disc_mesh(options);
     }
-    case MeshFamily::Gmsh: {
+    case MeshFamily::Gmsh:
+    case MeshFamily::GmshD4: {
       GmshDiscMeshOptions options;
+      options.dihedral_symmetry = m.family == MeshFamily::GmshD4;
       options.radius = scene.geometry.radius;
       options.inner_radius = ring ? scene.geometry.inner_radius : 0.0;
       options.size_slope = m.size_slope;

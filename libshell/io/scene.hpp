@@ -87,13 +87,22 @@ enum class MeshFamily {
   /// An unstructured mesh from Gmsh with the same size field (make_gmsh_disc_mesh): shares no
   /// structure with the other families. Disc or ring.
   Gmsh,
+  /// Gmsh's unstructured mesh of the sector 0 <= theta <= pi/4, reflected into the whole disc
+  /// or ring (make_gmsh_disc_mesh with dihedral_symmetry): the rings family's symmetry group
+  /// (both mirrors of the two-fold cone and the quarter turn) without its structure, so that
+  /// the mirror subspace and the S4 check apply on a second family.
+  GmshD4,
   /// The mesh in `file`: a Gmsh .msh sheet (a ghost layer is added) or an OBJ control mesh
   /// whose outermost layer is already the ghost layer.
   File,
 };
 
-/// The family's name in scene files: "lattice", "rings", "gmsh" or "file".
+/// The family's name in scene files: "lattice", "rings", "gmsh", "gmsh_d4" or "file".
 std::string mesh_family_name(MeshFamily family);
+
+/// Whether the family grades its element size as clamp(size_slope r, min_spacing, size_max)
+/// (rings, gmsh, gmsh_d4), so that it reads mesh.size_slope and mesh.size_max.
+bool graded_by_size(MeshFamily family);
 
 /// Control mesh and quadrature.
 struct SceneMesh {

@@ -104,6 +104,25 @@ std::vector<int> add_circle(double r, int center) {
   return arcs;
 }
 
+// The boundary of the sector 0 <= theta <= pi/4 (of the annulus if inner_radius > 0),
+// counter-clockwise: along the x-axis, the outer arc, back along the diagonal x = y, and the
+// inner arc. The diagonal's end points have x = y exactly, so that Gmsh's points on it do too.
+std::vector<int> add_sector(const GmshDiscMeshOptions& o, int center) {
+  const double c = o.radius / std::numbers::sqrt2;
+  const int outer_x = gmsh::model::geo::addPoint(o.radius, 0.0, 0.0);
+  const int outer_d = gmsh::model::geo::addPoint(c, c, 0.0);
+  const int outer_arc = gmsh::model::geo::addCircleArc(outer_x, center, outer_d);
+  if (o.inner_radius == 0.0)
+    return {gmsh::model::geo::addLine(center, outer_x), outer_arc,
+            gmsh::model::geo::addLine(outer_d, center)};
+  const double ci = o.inner_radius / std::numbers::sqrt2;
+  const int inner_x = gmsh::model::geo::addPoint(o.inner_radius, 0.0, 0.0);
+  const int inner_d = gmsh::model::geo::addPoint(ci, ci, 0.0);
+  return {gmsh::model::geo::addLine(inner_x, outer_x), outer_arc,
+          gmsh::model::geo::addLine(outer_d, inner_d),
+          gmsh::model::geo::addCircleArc(inner_d, center, inner_x)};
+}
+
 TriangleMesh run_gmsh(const GmshDiscMeshOptions& o) {
   const RadialSize size{o.size_slope, o.size_floor, o.size_max};
   gmsh::model::add("growshell_disc");
@@ -120,11 +139,18 @@ TriangleMesh run_gmsh(const GmshDiscMeshOptions& o) {
   gmsh::option::setNumber("Mesh.Binary", 0);
 
   const int center = gmsh::model::geo::addPoint(0.0, 0.0, 0.0);
-  std::vector<int> loops{gmsh::model::geo::addCurveLoop(add_circle(o.radius, center))};
-  if (o.inner_radius > 0.0) loops.push_back(gmsh::model::geo::addCurveLoop(add_circle(o.inner_radius, center)));
+  std::vector<int> loops;
+  if (o.dihedral_symmetry) {
+    loops.push_back(gmsh::model::geo::addCurveLoop(add_sector(o, center)));
+  } else {
+    loops.push_back(gmsh::model::geo::addCurveLoop(add_circle(o.radius, center)));
+    if (o.inner_radius > 0.0)
+      loops.push_back(gmsh::model::geo::addCurveLoop(add_circle(o.inner_radius, center)));
+  }
   const int surface = gmsh::model::geo::addPlaneSurface(loops);
   gmsh::model::geo::synchronize();
-  if (o.inner_radius == 0.0 && o.center_vertex) gmsh::model::mesh::embed(0, {center}, 2, surface);
+  if (o.inner_radius == 0.0 && o.center_vertex && !o.dihedral_symmetry)
+    gmsh::model::mesh::embed(0, {center}, 2, surface);
   gmsh::model::mesh::setSizeCallback(
       [size](int, int, double x, double y, double) { return radial_size(size, std::hypot(x, y)); });
   gmsh::model::mesh::generate(2);
@@ -172,6 +198,84 @@ TriangleMesh run_gmsh(const GmshDiscMeshOptions& o) {
   return sheet;
 }
 
+// Puts the sector's vertices exactly onto the lines of its straight edges (y = 0 and x = y;
+// Gmsh places them there up to rounding), so that the mirrors across them map them onto
+// themselves exactly.
+void snap_to_sector_edges(TriangleMesh& sector, double radius) {
+  const double tolerance = 1e-12 * radius;
+  for (Eigen::Index v = 0; v < sector.vertices.rows(); ++v) {
+    double& x = sector.vertices(v, 0);
+    double& y = sector.vertices(v, 1);
+    if (std::abs(y) <= tolerance) y = 0.0;
+    if (std::abs(x - y) <= tolerance) x = y = 0.5 * (x + y);
+    if (y < 0.0 || y > x)
+      throw MeshError(kCaller + ": Gmsh put sector vertex " + std::to_string(v) +
+                      " outside the sector 0 <= theta <= pi/4");
+  }
+}
+
+// The sector's images under the eight elements of D4 (quarter turns k = 0..3, each with and
+// without the mirror y -> -y), vertices on shared edges merged by their exact positions.
+TriangleMesh reflect_sector_to_disc(const TriangleMesh& sector) {
+  TriangleMesh disc;
+  std::vector<Eigen::Vector3d> points;
+  std::map<std::pair<double, double>, int> index_of;
+  std::vector<Eigen::Vector3i> faces;
+  for (int mirrored = 0; mirrored < 2; ++mirrored) {
+    for (int turn = 0; turn < 4; ++turn) {
+      std::vector<int> image(static_cast<std::size_t>(sector.vertices.rows()));
+      for (Eigen::Index v = 0; v < sector.vertices.rows(); ++v) {
+        double x = sector.vertices(v, 0);
+        double y = mirrored ? -sector.vertices(v, 1) : sector.vertices(v, 1);
+        for (int k = 0; k < turn; ++k) {  // (x, y) -> (-y, x), exact in floating point
+          const double t = x;
+          x = -y;
+          y = t;
+        }
+        // -0.0 and 0.0 are one position.
+        const std::pair<double, double> key(x == 0.0 ? 0.0 : x, y == 0.0 ? 0.0 : y);
+        const auto [it, added] = index_of.emplace(key, static_cast<int>(points.size()));
+        if (added) points.emplace_back(key.first, key.second, 0.0);
+        image[static_cast<std::size_t>(v)] = it->second;
+      }
+      for (Eigen::Index f = 0; f < sector.faces.rows(); ++f) {
+        Eigen::Vector3i t;
+        for (int k = 0; k < 3; ++k) t(k) = image[static_cast<std::size_t>(sector.faces(f, k))];
+        if (mirrored) std::swap(t(1), t(2));  // a mirror reverses the orientation
+        faces.push_back(t);
+      }
+    }
+  }
+  disc.vertices.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    disc.vertices.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
+  disc.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    disc.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  return disc;
+}
+
+// Puts the vertices on the boundary circles exactly onto them (Gmsh places them there up to
+// rounding); with `all_on_circles`, every boundary vertex must be on one of them.
+void project_onto_circles(TriangleMesh& sheet, const GmshDiscMeshOptions& options,
+                          bool all_on_circles) {
+  const MeshTopology topo(sheet);
+  for (int v = 0; v < topo.num_vertices(); ++v) {
+    if (!topo.is_boundary_vertex(v)) continue;
+    const double r = sheet.vertices.row(v).norm();
+    const double target = options.inner_radius > 0.0 &&
+                                  std::abs(r - options.inner_radius) < std::abs(r - options.radius)
+                              ? options.inner_radius
+                              : options.radius;
+    if (!(std::abs(r - target) <= 1e-6 * options.radius)) {
+      if (!all_on_circles) continue;  // a vertex on a straight edge of the sector
+      throw MeshError(kCaller + ": Gmsh boundary vertex " + std::to_string(v) +
+                      " is not on a boundary circle (radius " + std::to_string(r) + ")");
+    }
+    sheet.vertices.row(v) *= target / r;
+  }
+}
+
 }  // namespace
 
 TriangleMesh make_gmsh_disc_sheet(const GmshDiscMeshOptions& options) {
@@ -191,21 +295,24 @@ TriangleMesh make_gmsh_disc_sheet(const GmshDiscMeshOptions& options) {
     }
   }
   if (sheet.faces.rows() == 0) throw MeshError(kCaller + ": Gmsh generated no triangles");
-  // Project the boundary vertices onto their circle (Gmsh places them there up to rounding).
-  const MeshTopology topo(sheet);
-  for (int v = 0; v < topo.num_vertices(); ++v) {
-    if (!topo.is_boundary_vertex(v)) continue;
-    const double r = sheet.vertices.row(v).norm();
-    const double target = options.inner_radius > 0.0 &&
-                                  std::abs(r - options.inner_radius) < std::abs(r - options.radius)
-                              ? options.inner_radius
-                              : options.radius;
-    if (!(std::abs(r - target) <= 1e-6 * options.radius))
-      throw MeshError(kCaller + ": Gmsh boundary vertex " + std::to_string(v) +
-                      " is not on a boundary circle (radius " + std::to_string(r) + ")");
-    sheet.vertices.row(v) *= target / r;
+  if (!options.dihedral_symmetry) {
+    project_onto_circles(sheet, options, true);
+    return sheet;
   }
-  return sheet;
+  project_onto_circles(sheet, options, false);
+  snap_to_sector_edges(sheet, options.radius);
+  TriangleMesh disc = reflect_sector_to_disc(sheet);
+  // The reflected sectors must close up: a sheet (MeshTopology throws otherwise) whose only
+  // boundary is the circles, i.e. no sector edge left unmerged.
+  const MeshTopology topo(disc);
+  for (int v = 0; v < topo.num_vertices(); ++v) {
+    const double r = disc.vertices.row(v).norm();
+    if (topo.is_boundary_vertex(v) && std::abs(r - options.radius) > 1e-9 * options.radius &&
+        std::abs(r - options.inner_radius) > 1e-9 * options.radius)
+      throw MeshError(kCaller + ": the reflected sectors leave vertex " + std::to_string(v) +
+                      " (radius " + std::to_string(r) + ") on a boundary inside the disc");
+  }
+  return disc;
 }
 
 TriangleMesh make_gmsh_disc_mesh(const GmshDiscMeshOptions& options) {

@@ -35,7 +35,14 @@ struct GmshDiscMeshOptions {
   int random_seed = 1;
   /// Disc only: the centre (apex) is a mesh vertex (a point embedded in the surface).
   bool center_vertex = true;
-  /// If non-empty, Gmsh also writes its mesh to this .msh file (ASCII).
+  /// Mesh one sector 0 <= theta <= pi/4 and reflect it across its straight edges into the whole
+  /// disc or annulus: the mesh then has exactly the dihedral symmetry D4 (the mirrors y -> -y,
+  /// x -> -x, x <-> y and the quarter turn about z), the symmetry group of the rings family and
+  /// of the two-fold cone's fold lines, while it shares no structure with the rings family. Off:
+  /// the whole region is meshed at once and has no symmetry.
+  bool dihedral_symmetry = false;
+  /// If non-empty, Gmsh also writes its mesh to this .msh file (ASCII); with
+  /// dihedral_symmetry that is the meshed sector only.
   std::string msh_file;
   /// Format of msh_file: 4.1 or 2.2 (Mesh.MshFileVersion).
   double msh_file_version = 4.1;
@@ -47,7 +54,10 @@ struct GmshDiscMeshOptions {
 /// callback alone sets the size, also along the boundary circles). Vertices: the Gmsh nodes
 /// used by triangles, in increasing node tag; z = 0; boundary vertices projected onto their
 /// circle (Gmsh puts them there up to rounding), so rim vertices satisfy |X| = R to ~1e-16.
-/// Faces: Gmsh's triangles in order, each made counter-clockwise seen from +z.
+/// Faces: Gmsh's triangles in order, each made counter-clockwise seen from +z. With
+/// dihedral_symmetry the sector's vertices and triangles come first, then their images under
+/// the other seven elements of D4 (shared vertices on the sector's edges merged, so that the
+/// image of every vertex is a vertex exactly, not just to rounding).
 ///
 /// Deterministic: General.NumThreads = 1, Mesh.MaxNumThreads2D = 1 and the fixed random seed,
 /// so two calls with the same options give identical meshes. Gmsh's terminal output is off

@@ -185,6 +185,16 @@ TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
   const TriangleMesh gmsh = scene_mesh(s);
   EXPECT_GT(gmsh.faces.rows(), 100);
   EXPECT_NE(gmsh.vertices.rows(), rings.vertices.rows());
+  // gmsh_d4: Gmsh's sector reflected, with the rings family's quarter turn (faces included),
+  // read from its name in a scene file; the unsymmetric gmsh mesh does not have it.
+  apply_override(s, "mesh.family", "gmsh_d4");
+  EXPECT_EQ(s.mesh.family, MeshFamily::GmshD4);
+  EXPECT_TRUE(graded_by_size(s.mesh.family));
+  const TriangleMesh gmsh_d4 = scene_mesh(s);
+  EXPECT_NO_THROW(check_maps_faces_onto_faces(MeshTopology(gmsh_d4),
+                                              quarter_turn_symmetry(gmsh_d4.vertices, 1e-9)));
+  EXPECT_THROW(quarter_turn_symmetry(gmsh.vertices, 1e-9), std::invalid_argument);
+  s.mesh.family = MeshFamily::Gmsh;
   // A file: the Gmsh sheet written as .msh and read back gets the same ghost layer.
   const std::string msh = (dir_ / "disc.msh").string();
   GmshDiscMeshOptions o;
@@ -236,7 +246,7 @@ TEST(Scene, MeshFamilyErrorsNameTheKey) {
             "mesh.file = 'disc.msh' is read only with mesh.family = file");
   s = default_scene();
   EXPECT_EQ(error_of([&] { apply_override(s, "mesh.family", "hexagon"); }),
-            "mesh.family = \"hexagon\" must be one of \"lattice\", \"rings\", \"gmsh\", \"file\"");
+            "mesh.family = \"hexagon\" must be one of \"lattice\", \"rings\", \"gmsh\", \"gmsh_d4\", \"file\"");
 }
 
 TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
