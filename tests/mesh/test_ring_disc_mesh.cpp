@@ -82,15 +82,7 @@ TEST(RingDiscMesh, MirrorsAndQuarterTurnMapVerticesAndFacesExactly) {
   for (std::size_t k = 0; k < cases.size(); ++k) {
     SCOPED_TRACE("case " + std::to_string(k));
     const TriangleMesh mesh = make_ring_disc_mesh(cases[k]);
-    const MeshTopology topo(mesh);
-    for (const int axis : {0, 1}) {
-      const VertexSymmetry m = mirror_symmetry(mesh.vertices, axis, 1e-12);
-      EXPECT_EQ(symmetry_defect(mesh.vertices, m), 0.0);  // bit for bit, ghosts included
-      EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, m));
-    }
-    const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-12);
-    EXPECT_EQ(symmetry_defect(mesh.vertices, q), 0.0);
-    EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, q));
+    const LinearVertexSymmetry q = expect_cone_symmetry_group(mesh);
     // The quarter turn has order 4: no vertex but the centre is fixed.
     for (std::size_t v = 1; v < q.image.size(); ++v) EXPECT_NE(q.image[v], static_cast<int>(v));
     EXPECT_EQ(q.image[0], 0);
@@ -207,14 +199,7 @@ TEST(RingDiscMesh, AnnulusKeepsOneCountBetweenItsTwoRimCircles) {
     const double r = mesh.vertices.row(g).norm();
     EXPECT_TRUE(r < 0.5 || r > 1.0) << "ghost vertex " << g << " at r = " << r;
   }
-  for (const int axis : {0, 1}) {
-    const VertexSymmetry m = mirror_symmetry(mesh.vertices, axis, 1e-12);
-    EXPECT_EQ(symmetry_defect(mesh.vertices, m), 0.0);
-    EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, m));
-  }
-  const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-12);
-  EXPECT_EQ(symmetry_defect(mesh.vertices, q), 0.0);
-  EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, q));
+  const LinearVertexSymmetry q = expect_cone_symmetry_group(mesh);
   for (std::size_t v = 0; v < q.image.size(); ++v) EXPECT_NE(q.image[v], static_cast<int>(v));
   // Every interior vertex is regular: rings of one count are joined by zig-zag strips.
   const std::map<int, int> hist = interior_valence_histogram(mesh);

@@ -15,6 +15,7 @@
 #include "libshell/mesh/mesh_topology.hpp"
 #include "libshell/mesh/radial_size.hpp"
 #include "libshell/mesh/triangle_mesh.hpp"
+#include "libshell/mesh/vertex_symmetry.hpp"
 
 namespace growshell::test_support {
 
@@ -76,6 +77,22 @@ inline ElementStats element_stats(const TriangleMesh& mesh, Eigen::Index num_fac
     st.mean_size_ratio += ratio / static_cast<double>(num_faces);
   }
   return st;
+}
+
+/// Expects the two-fold cone's symmetry group of the mesh, bit for bit on the vertices (ghosts
+/// included) and as a map of faces onto faces: the mirrors x -> -x and y -> -y and the quarter
+/// turn about z. Returns the quarter turn's vertex map.
+inline LinearVertexSymmetry expect_cone_symmetry_group(const TriangleMesh& mesh) {
+  const MeshTopology topo(mesh);
+  for (const int axis : {0, 1}) {
+    const VertexSymmetry m = mirror_symmetry(mesh.vertices, axis, 1e-12);
+    EXPECT_EQ(symmetry_defect(mesh.vertices, m), 0.0) << "mirror normal to axis " << axis;
+    EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, m)) << "mirror normal to axis " << axis;
+  }
+  const LinearVertexSymmetry q = quarter_turn_symmetry(mesh.vertices, 1e-12);
+  EXPECT_EQ(symmetry_defect(mesh.vertices, q), 0.0);
+  EXPECT_NO_THROW(check_maps_faces_onto_faces(topo, q));
+  return q;
 }
 
 }  // namespace growshell::test_support
