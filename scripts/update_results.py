@@ -17,12 +17,14 @@ point with the most unknowns), and at the finest points, the difference between 
 
 A power law fitted over a sweep sits between
 
-    <!-- fit DIR x=PARAM y=KEY limit=L -->
+    <!-- fit DIR x=PARAM y=KEY limit=L [where=PARAM=VALUE] -->
     ...one line, rewritten...
     <!-- end fit -->
 
 and states y - L = A x^p with A and p from a least-squares line through (log x, log(y - L))
-over the completed points with y > L, and the largest relative misfit.
+over the completed points with y > L, and the largest relative misfit. `where=` keeps only
+the points whose swept parameter PARAM has the value VALUE (e.g. where=mesh.family=gmsh_d4,
+to fit one mesh family of a sweep over two).
 
 Usage: scripts/update_results.py [--root DIR] [PAGE]   (default docs/results.md)
        scripts/update_results.py --check [--root DIR] [PAGE]   exit 1 if the page is not up to date
@@ -39,7 +41,8 @@ import sys
 import tempfile
 
 MARKER = re.compile(r"<!-- sweep (\S+) keys=(\S+)( compare=no)? -->\n(.*?)<!-- end sweep -->", re.S)
-FIT = re.compile(r"<!-- fit (\S+) x=(\S+) y=(\S+) limit=(\S+) -->\n(.*?)<!-- end fit -->", re.S)
+FIT = re.compile(r"<!-- fit (\S+) x=(\S+) y=(\S+) limit=(\S+)(?: where=([^=\s]+)=(\S+))? -->\n(.*?)"
+                 r"<!-- end fit -->", re.S)
 
 
 def fail(message):
@@ -76,18 +79,21 @@ def load_sweep(root, directory):
         return path, json.load(f)
 
 
-def power_law(root, directory, x_key, y_key, limit):
+def power_law(root, directory, x_key, y_key, limit, where=None):
     path, sweep = load_sweep(root, directory)
     xs, ys = [], []
     for p in sweep["points"]:
         if p["status"] != "completed" or p["results"] is None:
+            continue
+        if where and str(p["params"].get(where[0])) != where[1]:
             continue
         x, y = p["params"].get(x_key), lookup(p["results"], y_key)
         if isinstance(x, (int, float)) and isinstance(y, (int, float)) and y > limit and x > 0:
             xs.append(math.log(x))
             ys.append(math.log(y - limit))
     if len(xs) < 3:
-        fail("%s: fewer than 3 completed points with %s > %g to fit" % (path, y_key, limit))
+        among = " and %s = %s" % where if where else ""
+        fail("%s: fewer than 3 completed points with %s > %g%s to fit" % (path, y_key, limit, among))
     n = len(xs)
     mx, my = sum(xs) / n, sum(ys) / n
     p = sum((a - mx) * (b - my) for a, b in zip(xs, ys)) / sum((a - mx) ** 2 for a in xs)
@@ -166,8 +172,10 @@ def render(root, page):
 
     def replace_fit(match):
         directory, x_key, y_key, limit = match.group(1), match.group(2), match.group(3), match.group(4)
-        return "<!-- fit %s x=%s y=%s limit=%s -->\n%s<!-- end fit -->" % (
-            directory, x_key, y_key, limit, power_law(root, directory, x_key, y_key, float(limit)))
+        where = (match.group(5), match.group(6)) if match.group(5) else None
+        return "<!-- fit %s x=%s y=%s limit=%s%s -->\n%s<!-- end fit -->" % (
+            directory, x_key, y_key, limit, " where=%s=%s" % where if where else "",
+            power_law(root, directory, x_key, y_key, float(limit), where))
 
     return text, FIT.sub(replace_fit, MARKER.sub(replace, text))
 

@@ -43,15 +43,27 @@ def main():
         with open(os.path.join(root, "runs", "mesh", "sweep.json"), "w") as f:
             json.dump(mesh, f)
         # phi_max - 2.57 = 3 h^0.5 exactly.
+        # A second family in the same sweep, phi_max - 2.57 = 2 h^0.25, fitted apart by where=.
         hs = [0.04, 0.02, 0.01, 0.005]
         thick = {"parameters": [{"key": "thickness", "values": [str(h) for h in hs]}],
                  "points": [point(i, {"thickness": h}, "rings", 100, 2.57 + 3 * math.sqrt(h))
                             for i, h in enumerate(hs)]}
+        both = {"parameters": [{"key": "mesh.family", "values": ["rings", "gmsh_d4"]},
+                               {"key": "thickness", "values": [str(h) for h in hs]}],
+                "points": [point(i, {"mesh.family": "rings", "thickness": h}, "rings", 100,
+                                 2.57 + 3 * math.sqrt(h)) for i, h in enumerate(hs)] +
+                          [point(4 + i, {"mesh.family": "gmsh_d4", "thickness": h}, "gmsh_d4", 100,
+                                 2.57 + 2 * h ** 0.25) for i, h in enumerate(hs)]}
+        os.makedirs(os.path.join(root, "runs", "both"))
+        with open(os.path.join(root, "runs", "both", "sweep.json"), "w") as f:
+            json.dump(both, f)
         with open(os.path.join(root, "runs", "h", "sweep.json"), "w") as f:
             json.dump(thick, f)
         page = os.path.join(root, "page.md")
         text = ("# Page\n\nprose stays\n\n<!-- sweep runs/mesh keys=phi_max -->\nold\n"
                 "<!-- end sweep -->\n\n<!-- fit runs/h x=thickness y=phi_max limit=2.57 -->\n"
+                "old\n<!-- end fit -->\n\n"
+                "<!-- fit runs/both x=thickness y=phi_max limit=2.57 where=mesh.family=gmsh_d4 -->\n"
                 "old\n<!-- end fit -->\n\n<!-- sweep runs/h keys=phi_max compare=no -->\n"
                 "<!-- end sweep -->\n\nmore prose\n")
         with open(page, "w") as f:
@@ -67,6 +79,8 @@ def main():
         check("| gmsh | 0.1 | 480 | completed | 4.05 |  |" in new, "finest gmsh row:\n" + new)
         check("Finest rings minus finest gmsh: phi_max -5.00e-02." in new, "family difference:\n" + new)
         check("A = 3, p = 0.500 (least squares over 4 points" in new, "power law:\n" + new)
+        check("where=mesh.family=gmsh_d4 -->\nphi_max − 2.57 = A thickness^p with A = 2, p = 0.250 "
+              "(least squares over 4 points" in new, "power law of one family:\n" + new)
         check("old" not in new, "the old table text is still there")
         check("| 0.005 | 100 | completed | 2.78213 |\n" in new, "compare=no row:\n" + new)
         check(run("--check", "--root", root, page).returncode == 0, "--check on a current page is not 0")
