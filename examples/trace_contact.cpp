@@ -53,6 +53,7 @@
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
+#include "studies/turn_free_stability_index.hpp"
 
 namespace {
 
@@ -111,6 +112,11 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
                           symmetric branch's branch points; its stability index is still the
                           full Hessian's; a mesh without the mirrors, e.g. a ring, or a start
                           off them is traced in the full space, with a note)
+  --index-excludes-pattern-turn 0
+                          count the stability index (column neg, the special points) with the
+                          fold pattern's turn about the axis, a mode the disc leaves neutral and
+                          a mesh only nearly so (default 1: without it, as the cone_branch study
+                          counts it, docs/guide/cone_branch.md, "Stability index")
   --out DIR               output directory (default out/contact)
 )";
 
@@ -153,6 +159,7 @@ int run(int argc, char** argv) {
   const std::string wind_pairs = cl.text("--wind-pairs", "triangles");
   const double wind_step_bound = cl.number("--wind-step-bound", 0.25);
   const bool symmetric_subspace = cl.integer("--symmetric-subspace", 1) != 0;
+  const bool index_excludes_turn = cl.integer("--index-excludes-pattern-turn", 1) != 0;
   const std::string out_dir = cl.text("--out", "out/contact");
   cl.reject_unknown();
   validate_scene(scene);
@@ -255,6 +262,15 @@ int run(int argc, char** argv) {
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may jump by a
   // finite angle over any step: short steps are accepted on a converged corrector alone.
   options.arclength.angle_test_max_step = 0.02 * max_step;
+  // The stability index without the fold pattern's turn, as the cone_branch study counts it
+  // (study.index_excludes_pattern_turn): the turn is neutral for an axisymmetric disc with or
+  // without contact, and only nearly so on a mesh, where its sign is the mesh's.
+  if (index_excludes_turn)
+    options.stability_index = [&model, &pinned](const ParametrizedObjective& energy,
+                                                const BranchSample& s) {
+      TurnFreeStabilityIndex index(energy, model, pinned);
+      return index.at(s.x, s.parameter);
+    };
 
   // Output.
   std::vector<std::string> events;

@@ -173,6 +173,10 @@ ContactBranchTrace trace_contact_branch(
                            model.dimension(), options.gap);
     PenalizedEnergy family(model, penalty);
     ArclengthOptions segment_options = arc;
+    if (options.stability_index)
+      segment_options.stability_index = [&options, &family](const BranchSample& s) {
+        return options.stability_index(family, s);
+      };
     segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
     const int segment = out.cost.segments++;

@@ -69,6 +69,13 @@ struct ContactBranchOptions {
   /// states, and their negative count (stability index, special points) is the full
   /// Hessian's with fixed_dofs held, one extra LDL^T factorisation per corrected point.
   std::shared_ptr<const SymmetricSubspace> symmetric_subspace;
+  /// If set, the stability index of every corrected sample (BranchSample::negative_eigenvalues,
+  /// and so the special points): called with the segment's energy (the shell with the penalty
+  /// on the segment's pairs, as a function of phi_e) and the full-space sample, e.g. a count
+  /// without the fold pattern's turn (studies/turn_free_stability_index.hpp). Unset: the
+  /// negative count of the penalised Hessian with fixed_dofs held.
+  std::function<int(const ParametrizedObjective& energy, const BranchSample& sample)>
+      stability_index;
 };
 
 /// A converged point of a branch with contact.

@@ -95,6 +95,36 @@ TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
   }
 }
 
+// ContactBranchOptions::stability_index: the samples carry the caller's count, and it is called
+// with the segment's energy, of which each sample is an equilibrium (its gradient, pinned dofs
+// aside, below the corrector's tolerance (inf-norm) at the sample's excess angle).
+TEST(ContactBranch, TheCallersStabilityIndexIsCalledWithTheSegmentsEnergy) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.arclength.max_steps = 3;
+  int calls = 0;
+  double worst = 0.0;
+  o.stability_index = [&](const ParametrizedObjective& energy, const BranchSample& s) {
+    ++calls;
+    Eigen::VectorXd g;
+    energy.evaluate(s.x, s.parameter, &g, nullptr);
+    for (const Eigen::Index dof : d.pinned) g(dof) = 0.0;
+    worst = std::max(worst, g.cwiseAbs().maxCoeff() / o.arclength.gradient_tolerance);
+    return 7;
+  };
+  std::vector<ContactBranchSample> samples;
+  const ContactBranchTrace t = trace_contact_branch(
+      d.model, d.proxy, x, GrownDisc::kStart, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) { samples.push_back(s); });
+  EXPECT_EQ(t.steps, 3);
+  ASSERT_EQ(samples.size(), 4u);
+  for (const ContactBranchSample& s : samples) EXPECT_EQ(s.sample.negative_eigenvalues, 7);
+  EXPECT_GE(calls, 4);
+  EXPECT_LT(worst, 1.0);
+  EXPECT_TRUE(t.special_points.empty());
+}
+
 TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolerance) {
   GrownDisc& d = disc();
   const double phi0 = GrownDisc::kStart;
