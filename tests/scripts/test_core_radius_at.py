@@ -5,24 +5,17 @@ status 2. Run by ctest (core_radius_at)."""
 
 import json
 import os
-import subprocess
-import sys
 import tempfile
 
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
-                      "core_radius_at.py")
+from script_checks import Checks, run_script
 
 
 def run(*args):
-    return subprocess.run([sys.executable, SCRIPT] + list(args), capture_output=True, text=True)
+    return run_script("core_radius_at.py", *args)
 
 
 def main():
-    failures = []
-
-    def check(condition, what):
-        if not condition:
-            failures.append(what)
+    check = Checks()
 
     with tempfile.TemporaryDirectory() as root:
         points = []
@@ -56,9 +49,7 @@ def main():
         r = run(os.path.join(root, "none"), "3")
         check(r.returncode == 2 and "sweep.json is missing" in r.stderr, "no sweep: " + r.stderr)
 
-    for f in failures:
-        print("FAILED:", f)
-    sys.exit(1 if failures else 0)
+    check.finish()
 
 
 if __name__ == "__main__":

@@ -6,12 +6,9 @@ and --check tells a stale page from a current one. Run by ctest (update_results)
 import json
 import math
 import os
-import subprocess
-import sys
 import tempfile
 
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts",
-                      "update_results.py")
+from script_checks import Checks, run_script
 
 
 def point(index, params, family, unknowns, phi_max, status="completed"):
@@ -21,15 +18,11 @@ def point(index, params, family, unknowns, phi_max, status="completed"):
 
 
 def run(*args):
-    return subprocess.run([sys.executable, SCRIPT] + list(args), capture_output=True, text=True)
+    return run_script("update_results.py", *args)
 
 
 def main():
-    failures = []
-
-    def check(condition, what):
-        if not condition:
-            failures.append(what)
+    check = Checks()
 
     with tempfile.TemporaryDirectory() as root:
         os.makedirs(os.path.join(root, "runs", "mesh"))
@@ -94,9 +87,7 @@ def main():
               "missing sweep: rc %d, %s" % (r.returncode, r.stderr))
         check(after == text.replace("runs/mesh", "runs/none"), "a failed update changed the page")
 
-    for f in failures:
-        print("FAILED:", f)
-    sys.exit(1 if failures else 0)
+    check.finish()
 
 
 if __name__ == "__main__":
