@@ -33,7 +33,8 @@ struct GmshDiscMeshOptions {
   GmshAlgorithm algorithm = GmshAlgorithm::FrontalDelaunay;
   /// Mesh.RandomSeed (Gmsh's random perturbations; fixed, so meshes are reproducible).
   int random_seed = 1;
-  /// Disc only: the centre (apex) is a mesh vertex (a point embedded in the surface).
+  /// Disc only: the centre (apex) is a mesh vertex (a point embedded in the surface); always
+  /// so with dihedral_symmetry, where it is the corner of the meshed sector.
   bool center_vertex = true;
   /// Mesh one sector 0 <= theta <= pi/4 and reflect it across its straight edges into the whole
   /// disc or annulus: the mesh then has exactly the dihedral symmetry D4 (the mirrors y -> -y,
