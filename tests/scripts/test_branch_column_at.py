@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""scripts/core_radius_at.py: R_c interpolated at one excess angle for every completed point
-of a sweep, a point whose trace stops short named as such, and bad input refused with exit
-status 2. Run by ctest (core_radius_at)."""
+"""scripts/branch_column_at.py: a branch.csv column interpolated at given excess angles for
+every completed point of a sweep (divided by h on request), "—" where a trace stops short, and
+bad input refused with exit status 2. Run by ctest (branch_column_at)."""
 
 import json
 import os
@@ -11,15 +11,14 @@ from script_checks import Checks, run_script
 
 
 def run(*args):
-    return run_script("core_radius_at.py", *args)
+    return run_script("branch_column_at.py", *args)
 
 
 def main():
     check = Checks()
-
     with tempfile.TemporaryDirectory() as root:
         points = []
-        # R_c = h (1 + 0.1 phi_e) on a trace to 4; the second point stops at 2.
+        # core_radius = h (1 + 0.1 phi_e) on a trace to 4; the second point stops at 2.
         for i, (h, end) in enumerate([(0.02, 4.0), (0.01, 2.0)]):
             d = os.path.join(root, "point_%03d" % i)
             os.makedirs(d)
@@ -36,19 +35,19 @@ def main():
                        "status": "pending", "results": None})
         with open(os.path.join(root, "sweep.json"), "w") as f:
             json.dump({"points": points}, f)
-        r = run(root, "3.25")
+        r = run(root, "core_radius", "1.5", "3.25")
         check(r.returncode == 0, "run failed: " + r.stderr)
-        lines = r.stdout.splitlines()
-        check(len(lines) == 2, "one line per completed point:\n" + r.stdout)
-        check("thickness=0.02: h = 0.02, R_c(3.25) = 0.02650 m, R_c/h = 1.325" in r.stdout,
-              "interpolated value:\n" + r.stdout)
-        check("thickness=0.01: h = 0.01, the trace does not reach phi_e = 3.25" in r.stdout,
-              "short trace:\n" + r.stdout)
-        r = run(root, "three")
-        check(r.returncode == 2 and "PHI must be a number" in r.stderr, "bad PHI: " + r.stderr)
-        r = run(os.path.join(root, "none"), "3")
+        check(r.stdout.splitlines() == [
+            "| thickness | core_radius at 1.5 | core_radius at 3.25 |", "|---|---|---|",
+            "| 0.02 | 0.0230 | 0.0265 |", "| 0.01 | 0.0115 | — |"], "table:\n" + r.stdout)
+        r = run("--over-thickness", root, "core_radius", "3.25")
+        check("| 0.02 | 1.3250 |" in r.stdout, "divided by h:\n" + r.stdout)
+        r = run(root, "core_radius", "three")
+        check(r.returncode == 2 and "every PHI must be a number" in r.stderr, "bad PHI: " + r.stderr)
+        r = run(root, "chord_up", "3")
+        check(r.returncode == 2 and "has no column chord_up" in r.stderr, "no column: " + r.stderr)
+        r = run(os.path.join(root, "none"), "core_radius", "3")
         check(r.returncode == 2 and "sweep.json is missing" in r.stderr, "no sweep: " + r.stderr)
-
     check.finish()
 
 
