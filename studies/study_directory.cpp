@@ -41,9 +41,9 @@ void check_output_directory(const std::string& directory, ExistingOutput existin
                                 "' exists and is not a directory");
   if (fs::is_empty(directory, ec)) return;
   if (existing == ExistingOutput::Refuse)
-    throw std::invalid_argument("output directory '" + directory + "' is not empty; give --resume " +
-                                "to continue the " + recorded + " recorded there, or --overwrite " +
-                                "to replace it");
+    throw std::invalid_argument("output directory '" + directory +
+                                "' is not empty; give --resume to continue the " + recorded +
+                                " recorded there, or --overwrite to replace it");
   if (existing == ExistingOutput::Resume &&
       !fs::is_regular_file(fs::path(directory) / record_file, ec))
     throw std::invalid_argument("output directory '" + directory + "' holds no " + recorded +

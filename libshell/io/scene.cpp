@@ -620,7 +620,8 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 
 double resolved_min_spacing(const Scene& scene) {
   if (scene.mesh.min_spacing) return *scene.mesh.min_spacing;
-  return (graded_by_size(scene.mesh.family) ? 0.25 : 0.5) * thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  return (graded_by_size(scene.mesh.family) ? 0.25 : 0.5) * h;
 }
 
 double resolved_exclusion_radius(const Scene& scene) {
