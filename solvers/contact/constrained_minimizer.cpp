@@ -555,6 +555,9 @@ ConstrainedResult minimize_with_constraints(SparseObjective& energy,
   set_option(o, "nlp_lower_bound_inf", kLowerInf);
   set_option(o, "nlp_upper_bound_inf", kUpperInf);
   set_option(o, "linear_solver", options.linear_solver);
+  // MUMPS' automatic ordering can pick threaded SCOTCH, which was seen to hang in its thread
+  // launch (Debian's scotch 7, a 5.7k-unknown skewed cone); METIS, as CHOLMOD uses, does not.
+  if (options.linear_solver == "mumps") set_option(o, "mumps_pivot_order", 5);
   set_option(o, "max_iter", options.max_iterations);
   set_option(o, "tol", options.tolerance);
   set_option(o, "constr_viol_tol", options.constraint_violation_tolerance);
