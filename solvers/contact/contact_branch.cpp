@@ -154,6 +154,11 @@ ContactBranchTrace trace_contact_branch(
   double margin = options.candidate_margin;
   bool have_sample = false;  // out.last holds a converged sample
   int retries = 0;
+  // The sample one step before the last segment's end: where a segment whose start does not
+  // converge on its rebuilt pair set is retried from, with a shorter step and a wider margin.
+  BranchSample fallback;
+  bool have_fallback = false;
+  int start_retries = 0;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -183,8 +188,8 @@ ContactBranchTrace trace_contact_branch(
 
     const bool emit_start = !have_sample;
     int samples_in_segment = 0;
-    BranchSample last_good;
-    bool have_last_good = false;
+    BranchSample last_good, before_last_good;
+    bool have_last_good = false, have_before_last_good = false;
     double previous_arclength = 0.0, last_step = step;
     const auto on_segment_sample = [&](const BranchSample& s) {
       auto tc = Clock::now();
@@ -199,6 +204,10 @@ ContactBranchTrace trace_contact_branch(
         ++out.steps;
       }
       previous_arclength = s.arclength;
+      if (have_last_good) {
+        before_last_good = last_good;
+        have_before_last_good = true;
+      }
       last_good = s;
       have_last_good = true;
       if (is_start && !emit_start) {
@@ -270,16 +279,32 @@ ContactBranchTrace trace_contact_branch(
       continue;
     }
     retries = 0;
-    margin = options.candidate_margin;
     out.cost.continuation += trace.cost;
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
     out.failed_steps += trace.failed_steps;
     if (samples_in_segment == 0) {
+      // The start, an equilibrium on the previous pair set, did not converge on the rebuilt
+      // one (pairs that enter between the two sets can change the forces abruptly). Step back
+      // one sample and go on with a shorter step and a wider margin, so that those pairs enter
+      // the set while they are still farther than the contact distance.
+      if (have_fallback && start_retries < 4) {
+        ++start_retries;
+        ++out.cost.rebuilds_after_violation;
+        start_x = fallback.x;
+        start_phi = fallback.parameter;
+        start_direction = fallback.tangent_state;
+        start_direction_parameter = fallback.tangent_parameter;
+        step = std::max(0.5 * step, arc.min_step);
+        margin *= 2.0;
+        have_fallback = false;  // one step back only; a second failure ends the trace
+        continue;
+      }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +
                     " did not converge: " + trace.message;
       break;
     }
+    start_retries = 0;
     if (trace.reached_bound && trace.message != "reached max_steps") {
       out.reached_bound = true;
       out.message = trace.message;
@@ -288,6 +313,13 @@ ContactBranchTrace trace_contact_branch(
     if (trace.message != "reached max_steps") {
       out.message = trace.message;
       break;
+    }
+    // A segment that ran its steps restores the margin (a retried one keeps the wider one
+    // for its successor only if it ran no step).
+    if (samples_in_segment > 1) margin = options.candidate_margin;
+    if (have_before_last_good) {
+      fallback = before_last_good;
+      have_fallback = true;
     }
     start_x = trace.last.x;
     start_phi = trace.last.parameter;
