@@ -28,13 +28,13 @@
 #include "examples/support/branch_table.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
-#include "examples/support/hard_contact_options.hpp"
 #include "examples/support/json_number.hpp"
 #include "examples/support/saved_point.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/contact/hard_contact_crossing.hpp"
+#include "solvers/contact/hard_contact_solve_options.hpp"
 #include "solvers/continuation/branch_crossing.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -241,7 +241,7 @@ int run(int argc, char** argv) {
   newton.decrement_tolerance = 1e-6 * Y * h * h * h;
   HardContactCrossingOptions options;
   const double contact_distance = scene.physics.contact_distance.value_or(h);
-  options.solve = examples::hard_contact_solve_options(model, h, contact_distance,
+  options.solve = hard_contact_solve_options(model, h, contact_distance,
                                                        resolved_exclusion_radius(scene), h, newton);
   options.penalty_stiffness =
       stiffness_factor * contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));

@@ -35,7 +35,6 @@
 
 #include "examples/support/contact_free_cone_options.hpp"
 #include "examples/support/guarded_main.hpp"
-#include "examples/support/hard_contact_options.hpp"
 #include "examples/support/json_number.hpp"
 #include "examples/support/mirror_subspace_option.hpp"
 #include "examples/support/saved_point.hpp"
@@ -48,6 +47,7 @@
 #include "libshell/io/shell_snapshot.hpp"
 #include "libshell/io/vtk_writer.hpp"
 #include "solvers/contact/contact_branch.hpp"
+#include "solvers/contact/hard_contact_solve_options.hpp"
 #include "solvers/contact/contact_free_cone.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/econe_branches.hpp"
@@ -83,7 +83,7 @@ const char* kUsage = R"(usage: trace_contact [SCENE.json] [options]
   --stiffness-factor F    penalty stiffness k = F Y l^2 / h (l: proxy spacing; default 10)
   --segments N            contact proxy: segments per element edge (default 1)
   --exclusion-radius R    pairs closer than R (m) in the reference are neighbours, not
-                          contact (physics.contact_exclusion_radius; default auto = pi h / 2;
+                          contact (physics.contact_exclusion_radius; default auto = 8 h;
                           it decides whether the fold at the apex counts as contact, see
                           docs/contact.md)
   --margin M              pairs within h + M enter a segment's penalty (default h)
@@ -361,7 +361,7 @@ int run(int argc, char** argv) {
   branches.contact.symmetric_subspace = examples::subspace_for_start(
       examples::mirror_subspace_option(model, R, symmetric_subspace), x, 0.1 * h);
   // Ipopt verifies the relaxed skewed state under the hard constraints gap >= h.
-  const ContactSolveOptions ipopt = examples::hard_contact_solve_options(
+  const ContactSolveOptions ipopt = hard_contact_solve_options(
       model, h, options.contact_distance, options.exclusion_radius, options.candidate_margin,
       newton_options);
   if (ipopt_check) branches.verify_with_ipopt = ipopt;

@@ -1,13 +1,14 @@
 #pragma once
-// Ipopt settings for re-solving a penalty-traced state under the hard constraints
-// gap >= contact distance, shared by trace_contact's check of the skewed state and
-// crit_hard_contact.
+/// \file
+/// Ipopt settings for re-solving a penalty-traced state under the hard constraints
+/// gap >= contact distance: the econe_contact study's check of the skewed state,
+/// trace_contact's and crit_hard_contact's.
 
 #include "libshell/assembly/shell_model.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/newton/newton_solver.hpp"
 
-namespace growshell::examples {
+namespace growshell {
 
 /// Vertex-triangle and edge-edge pairs (the penalty sees vertex-triangle pairs only, so a
 /// re-solve also measures what edges crossing between proxy vertices change); tolerances
@@ -33,4 +34,4 @@ inline ContactSolveOptions hard_contact_solve_options(const ShellModel& model, d
   return o;
 }
 
-}  // namespace growshell::examples
+}  // namespace growshell
