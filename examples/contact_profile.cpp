@@ -37,7 +37,7 @@ const char* kUsage = R"(usage: contact_profile RUN_DIR [options]
                       (default 0,0.2,0.5,0.9)
   --distance D        contact distance (default: the scene's, i.e. the thickness h)
   --exclusion-radius R  pairs closer than R (m) in the reference are neighbours (default: the
-                      scene's physics.contact_exclusion_radius, auto = pi h / 2). At a cone's
+                      scene's physics.contact_exclusion_radius, auto = 8 h). At a cone's
                       apex the closest pair straddles the apex at reference distance R, so the
                       band r >= 0 measures where that cut-off lies (docs/contact.md)
   --from P            skip states with phi_e < P (default 0)

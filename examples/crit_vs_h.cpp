@@ -44,7 +44,7 @@ using Clock = std::chrono::steady_clock;
 
 const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
   SCENE.json          scene (default: the paper's disc); its thickness is replaced by each h
-                      (physics.contact_exclusion_radius "auto" follows it as pi h / 2; a number
+                      (physics.contact_exclusion_radius "auto" follows it as 8 h; a number
                       in the scene is used as it is for every h)
   --h LIST            thicknesses, comma separated (default 0.04,0.03,0.02,0.015)
   --mesh FAMILY       mesh family: rings (default), gmsh or lattice (mesh.family)
@@ -56,7 +56,7 @@ const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
                       first contact; e.g. 6.25 with --exclusion-factor 8), its samples part of
                       the symmetric branch
   --exclusion-factor F  exclusion radius F h for every h (default: the scene's,
-                      physics.contact_exclusion_radius; auto = pi h / 2)
+                      physics.contact_exclusion_radius; auto = 8 h)
   --phi-top P         the symmetric branch is followed up to P and relaxed there (default 7.0)
   --stiffness-factor F  penalty stiffness k = F Y l^2 / h (default 10)
   --max-step S        largest arclength step (default 0.05)

@@ -53,6 +53,11 @@ Studies (scene key study.kind):
                the cone_branch study at each thickness of study.thicknesses, with phi_e at
                the first branch point against c2 h^2 and phi_e^max - 2.57 fitted as A h^p
                (the paper's Fig. 2; docs/guide/thickness_series.md)
+  econe_contact
+               the two-fold cone through self-contact: the cone_branch study up to first
+               contact, the symmetric branch with the contact penalty, the skewed cone, and
+               phi_e^crit by stability and by energy (the paper's Fig. 4 at one thickness;
+               docs/guide/econe_contact.md)
 
 Scene files: docs/scenes.md (every key); examples/scenes/disc_h002.json (the default scene).
 )";
@@ -90,8 +95,19 @@ Studies (study.kind):
                thickness_series.png, and DIR/point_NNN/, one cone_branch study per thickness
                (with DIR/sweep_plan.json, sweep.json and sweep.csv, as growshell sweep writes
                them); --resume goes on with the thicknesses not yet finished
+  econe_contact
+               scene keys: those of cone_branch, physics.contact_exclusion_radius,
+               physics.contact_distance, study.skew_search_at, study.contact_max_step,
+               study.penalty_stiffness_factor, study.ipopt_check
+               (docs/guide/econe_contact.md)
+               writes DIR/results.json (first contact, phi_e^crit both ways, the skewed cone,
+               the Ipopt check), DIR/cone/ (the cone_branch study up to first contact),
+               DIR/symmetric/ and DIR/skewed/ (branch records with contact), scene.json and
+               econe_contact.png; --resume goes on with the cone from its last state and
+               traces the branches with contact again
 
-The figure (DIR/eb_hat.png, plot_study.py; DIR/thickness_series.png, plot_thickness_series.py)
+The figure (DIR/eb_hat.png, plot_study.py; DIR/thickness_series.png, plot_thickness_series.py;
+DIR/econe_contact.png, plot_econe_contact.py)
 is drawn with /usr/bin/python3 (the environment variable GROWSHELL_PYTHON names another
 interpreter) when it can import matplotlib; otherwise it is skipped with a note, and the study
 stands.
@@ -267,6 +283,8 @@ int run_study(const RunCommand& c) {
   const SceneStudyOutcome outcome = run_scene_study(scene, c.existing, say);
   if (scene.study.kind == StudyKind::ThicknessSeries)
     draw_figure("plot_thickness_series.py", dir, "thickness_series.png");
+  else if (scene.study.kind == StudyKind::EconeContact)
+    draw_figure("plot_econe_contact.py", dir, "econe_contact.png");
   else
     draw_figure("plot_study.py", dir, "eb_hat.png");
   if (!outcome.completed) {

@@ -214,7 +214,7 @@ void ConeBranchRun::set_up() {
   arclength_.parameter_max = scene_.continuation.phi_max;
 
   ConeMeasureSettings measure;
-  measure.exclusion_radius = 0.5 * std::numbers::pi * h_;
+  measure.exclusion_radius = resolved_exclusion_radius(scene_);
   measure.core_radius = options_.core_radius;
   measure.measure_symmetry = scene_.continuation.mode == 2;
   measures_ = std::make_unique<ConeSampleMeasurer>(*model_, measure);

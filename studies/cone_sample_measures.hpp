@@ -20,7 +20,8 @@ namespace growshell {
 /// Settings of ConeSampleMeasurer. Lengths in metres.
 struct ConeMeasureSettings {
   /// Reference distance below which two parts of the sheet are neighbours, never in contact
-  /// (SelfDistanceOptions::exclusion_radius), > 0; the studies use pi h / 2.
+  /// (SelfDistanceOptions::exclusion_radius), > 0; the studies use the scene's
+  /// (physics.contact_exclusion_radius, 8 h by default).
   double exclusion_radius = 0.0;
   /// The sheet within this reference distance of the growth centre is left out of the gap and
   /// the self-intersection test (>= 0; 0 keeps all of it).

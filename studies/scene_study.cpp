@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "studies/cone_branch_study.hpp"
+#include "studies/econe_contact_study.hpp"
 #include "studies/thickness_series_study.hpp"
 
 namespace growshell {
@@ -14,6 +15,9 @@ void check_scene_study_directory(const Scene& scene, ExistingOutput existing) {
       return;
     case StudyKind::ThicknessSeries:
       check_thickness_series_directory(scene.output.directory, existing);
+      return;
+    case StudyKind::EconeContact:
+      check_econe_contact_directory(scene.output.directory, existing);
       return;
   }
   throw std::logic_error("check_scene_study_directory: a study kind without a directory check");
@@ -34,6 +38,10 @@ SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,
     case StudyKind::ThicknessSeries: {
       const ThicknessSeriesResults series = run_thickness_series_study(scene, existing, progress);
       return {series.completed, series.end};
+    }
+    case StudyKind::EconeContact: {
+      const EconeContactResults results = run_econe_contact_study(scene, existing, progress);
+      return {results.completed, results.end};
     }
   }
   throw std::logic_error("run_scene_study: a study kind without a runner");

@@ -22,13 +22,15 @@ struct SceneStudyOutcome {
 
 /// Throws std::invalid_argument, naming the directory and what to do, if the study of `scene`
 /// may not write into scene.output.directory under `existing`: check_study_directory for
-/// cone_branch, check_thickness_series_directory for thickness_series. Writes nothing.
+/// cone_branch, check_thickness_series_directory for thickness_series, check_econe_contact_directory for
+/// econe_contact. Writes nothing.
 void check_scene_study_directory(const Scene& scene, ExistingOutput existing);
 
 /// Validates `scene`, checks scene.output.directory under `existing`
 /// (check_scene_study_directory), and runs the study scene.study.kind names there: from the start, or (Resume) on from the
 /// last state the recorded study committed. Writes what the study writes (for cone_branch,
-/// run_cone_branch_study; for thickness_series, run_thickness_series_study), never the figure. Throws, before writing anything, as
+/// run_cone_branch_study; for thickness_series, run_thickness_series_study; for econe_contact,
+/// run_econe_contact_study), never the figure. Throws, before writing anything, as
 /// validate_scene and check_study_directory for bad input, and as the study's runner.
 SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,
                                   const StudyProgress& progress = {});

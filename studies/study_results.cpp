@@ -15,6 +15,13 @@ Json number_or_null(const std::optional<double>& v) {
   return v && std::isfinite(*v) ? Json(*v) : Json(nullptr);
 }
 
+Json mesh_json(const StudyMesh& mesh) {
+  return {{"family", mesh.family},
+          {"size_slope", number_or_null(mesh.size_slope)},
+          {"elements", mesh.elements},
+          {"unknowns", mesh.unknowns}};
+}
+
 }  // namespace
 
 std::string cone_branch_results_json(const ConeBranchResults& r) {
@@ -22,10 +29,7 @@ std::string cone_branch_results_json(const ConeBranchResults& r) {
   j["study"] = "cone_branch";
   j["thickness"] = number_or_null(r.thickness);
   j["mode"] = r.mode;
-  j["mesh"] = {{"family", r.mesh.family},
-               {"size_slope", number_or_null(r.mesh.size_slope)},
-               {"elements", r.mesh.elements},
-               {"unknowns", r.mesh.unknowns}};
+  j["mesh"] = mesh_json(r.mesh);
   j["phi_branch"] = number_or_null(r.phi_branch);
   j["phi_max"] = number_or_null(r.phi_max);
   j["eb_hat_max"] = number_or_null(r.eb_hat_max);
@@ -46,6 +50,56 @@ std::string cone_branch_results_json(const ConeBranchResults& r) {
 
 void write_cone_branch_results(const std::string& directory, const ConeBranchResults& results) {
   write_file_atomically(directory + "/results.json", cone_branch_results_json(results));
+}
+
+std::string econe_contact_results_json(const EconeContactResults& r) {
+  Json j;
+  j["study"] = "econe_contact";
+  j["thickness"] = r.thickness;
+  j["mesh"] = mesh_json(r.mesh);
+  j["contact_distance"] = r.contact_distance;
+  j["exclusion_radius"] = r.exclusion_radius;
+  j["penalty_stiffness"] = r.penalty_stiffness;
+  j["phi_branch"] = number_or_null(r.phi_branch);
+  j["phi_max"] = number_or_null(r.phi_max);
+  j["eb_hat_max"] = number_or_null(r.eb_hat_max);
+  j["phi_contact_start"] = number_or_null(r.phi_contact_start);
+  j["phi_kiss"] = number_or_null(r.phi_first_contact);
+  j["phi_kiss_criterion"] = "first_contact";
+  j["phi_first_contact"] = number_or_null(r.phi_first_contact);
+  j["phi_crit_stability"] = number_or_null(r.phi_crit_stability);
+  j["phi_crit_energy"] = number_or_null(r.phi_crit_energy);
+  j["phi_crit_energy_criterion"] =
+      r.phi_crit_energy ? Json(r.phi_crit_energy_criterion) : Json(nullptr);
+  Json crossings = Json::array();
+  for (const EconeCrossing& c : r.crossings)
+    crossings.push_back({{"phi_e", number_or_null(c.phi_e)},
+                         {"error_estimate", number_or_null(c.error_estimate)},
+                         {"skewed_stable", c.skewed_stable}});
+  j["crossings"] = crossings;
+  j["max_s4_defect_symmetric"] = number_or_null(r.max_s4_defect_symmetric);
+  j["skewed"] = {{"found", r.skewed_found},
+                 {"message", r.skewed_message},
+                 {"search_at", number_or_null(r.skew_search_at)},
+                 {"energy_below_symmetric", number_or_null(r.skewed_energy_below_symmetric)},
+                 {"lowest_phi", number_or_null(r.skewed_lowest_phi)},
+                 {"highest_phi", number_or_null(r.skewed_highest_phi)}};
+  if (r.ipopt)
+    j["ipopt"] = {{"converged", r.ipopt->converged},
+                  {"message", r.ipopt->message},
+                  {"relative_energy_difference", number_or_null(r.ipopt->relative_energy_difference)},
+                  {"state_difference_over_h", number_or_null(r.ipopt->state_difference_over_h)},
+                  {"min_distance_over_h", number_or_null(r.ipopt->min_distance_over_h)}};
+  else
+    j["ipopt"] = nullptr;
+  j["completed"] = r.completed;
+  j["end"] = r.end;
+  j["cone_csv"] = "cone/branch.csv";
+  j["symmetric_csv"] = "symmetric/branch.csv";
+  j["skewed_csv"] = "skewed/branch.csv";
+  j["events"] = {"cone/events.json", "symmetric/events.json", "skewed/events.json"};
+  j["wall_seconds"] = number_or_null(r.wall_seconds);
+  return j.dump(2) + "\n";
 }
 
 }  // namespace growshell

@@ -1,12 +1,14 @@
 #pragma once
 /// \file
 /// DIR/results.json: the key values of a finished study under named keys, the one file a
-/// table or a figure of the paper reads (docs/guide/cone_branch.md lists the keys). Written
+/// table or a figure of the paper reads (docs/guide/cone_branch.md and
+/// docs/guide/econe_contact.md list the keys). Written
 /// atomically at the study's end; numbers in their shortest round-trip form; null where a
 /// value does not apply (e.g. no mid-surface contact within the traced range).
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace growshell {
 
@@ -60,5 +62,79 @@ std::string cone_branch_results_json(const ConeBranchResults& results);
 /// Writes cone_branch_results_json to DIR/results.json atomically (write_file_atomically).
 /// Throws std::runtime_error naming the file if it cannot be written.
 void write_cone_branch_results(const std::string& directory, const ConeBranchResults& results);
+
+/// The Ipopt re-solve of the relaxed skewed state under hard constraints.
+struct EconeIpoptCheck {
+  bool converged = false;
+  std::string message;
+  /// (E_penalty - E_ipopt) / E_ipopt of the elastic energies E_s + E_b of the two states.
+  double relative_energy_difference = 0.0;
+  double state_difference_over_h = 0.0;  ///< max |x_ipopt - x_penalty| / h
+  double min_distance_over_h = 0.0;      ///< smallest pair distance at Ipopt's solution / h
+};
+
+/// An energy crossing of the symmetric and the skewed branch.
+struct EconeCrossing {
+  double phi_e = 0.0;
+  double error_estimate = 0.0;  ///< of phi_e (EnergyCrossing::error_estimate)
+  bool skewed_stable = false;   ///< the skewed samples on both sides are stable
+};
+
+/// The key values of an econe_contact study. Angles in radians, lengths in metres, energies in
+/// joules, E_b-hat in 1/m^2.
+struct EconeContactResults {
+  double thickness = 0.0;  ///< h at the centre
+  StudyMesh mesh;
+  double contact_distance = 0.0;   ///< mid-surface distance at which the sheets touch
+  double exclusion_radius = 0.0;   ///< physics.contact_exclusion_radius, resolved
+  double penalty_stiffness = 0.0;  ///< k (N/m)
+  /// From the contact-free cone (stage 1): its first branch point, and its maximum of E_b-hat.
+  std::optional<double> phi_branch, phi_max, eb_hat_max;
+  /// Where the trace with contact started: the cone's last state.
+  std::optional<double> phi_contact_start;
+  /// The first contact on the symmetric branch (gap = contact distance beyond the exclusion
+  /// radius, on the limit surface: the cone's contact event; the penalty's own event where the
+  /// cone did not stop at contact): results.json's phi_kiss, with phi_kiss_criterion
+  /// "first_contact".
+  std::optional<double> phi_first_contact;
+  /// The symmetric branch's first loss of stability (its turn-free index leaves 0).
+  std::optional<double> phi_crit_stability;
+  /// phi_e^crit by energy: where a stable skewed cone first has a lower energy than the
+  /// symmetric one (studies/ground_state_exchange.hpp), and how ("energy_crossing",
+  /// "stabilised_below" or "lowest_sample").
+  std::optional<double> phi_crit_energy;
+  std::string phi_crit_energy_criterion;
+  /// Every energy crossing of the two branches, by phi_e.
+  std::vector<EconeCrossing> crossings;
+  /// The largest S4 defect of the symmetric branch's samples with contact.
+  std::optional<double> max_s4_defect_symmetric;
+  bool skewed_found = false;
+  std::string skewed_message;  ///< how the skewed cone was found, or why not
+  std::optional<double> skew_search_at;  ///< phi_e of the relaxed symmetric state
+  /// (E_symmetric - E_skewed) / E_symmetric at skew_search_at (E = E_s + E_b + P).
+  std::optional<double> skewed_energy_below_symmetric;
+  /// The lowest and highest phi_e of the skewed branch's samples.
+  std::optional<double> skewed_lowest_phi, skewed_highest_phi;
+  std::optional<EconeIpoptCheck> ipopt;
+  /// Whether every stage ran to its end (the symmetric branch to phi_max, the skewed cone
+  /// found and both its traces ended at a bound), and why not.
+  bool completed = false;
+  std::string end;
+  double wall_seconds = 0.0;
+};
+
+/// results.json's text: a JSON object, 2-space indent, trailing newline, keys in this order:
+/// study ("econe_contact"), thickness, mesh {family, size_slope, elements, unknowns},
+/// contact_distance, exclusion_radius, penalty_stiffness, phi_branch, phi_max, eb_hat_max,
+/// phi_contact_start, phi_kiss, phi_kiss_criterion ("first_contact"), phi_first_contact,
+/// phi_crit_stability, phi_crit_energy, phi_crit_energy_criterion, crossings [{phi_e,
+/// error_estimate, skewed_stable}],
+/// max_s4_defect_symmetric, skewed {found, message, search_at, energy_below_symmetric,
+/// lowest_phi, highest_phi}, ipopt ({converged, message, relative_energy_difference,
+/// state_difference_over_h, min_distance_over_h} or null), completed, end, cone_csv,
+/// symmetric_csv, skewed_csv, events (the three events.json), wall_seconds. Unset and
+/// non-finite values are null.
+std::string econe_contact_results_json(const EconeContactResults& results);
+
 
 }  // namespace growshell

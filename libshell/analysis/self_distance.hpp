@@ -16,7 +16,7 @@ struct SelfDistanceOptions {
   /// positions are closer than r_ex are neighbours along the sheet and never count as
   /// contact. A fold of radius rho brings points at reference distance s to the chord
   /// 2 rho sin(s / (2 rho)), so a tight fold of radius h/2 is only ignored if
-  /// r_ex >= pi h / 2; the scene default is pi h / 2.
+  /// r_ex >= pi h / 2; the scene default is 8 h (the apex model of docs/contact.md).
   double exclusion_radius = 0.0;
   /// Each element is sampled on its regular sub-triangulation with this many segments per
   /// edge (>= 1; 1 = the three corners only): (n + 1)(n + 2) / 2 limit-surface samples per

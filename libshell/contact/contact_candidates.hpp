@@ -25,11 +25,17 @@
 ///  - r_ex >= h: points closer than h along the sheet are closer than h in space (up to
 ///    the stretch), so without exclusion every point would be "in contact" with its own
 ///    neighbourhood.
-///  - r_ex <= pi h / 2: the tightest fold two touching layers can make has radius h / 2, whose
+///  - r_ex >= pi h / 2: the tightest fold two touching layers can make has radius h / 2, whose
 ///    arc has length pi h / 2; points further apart along the sheet than that are on the two
-///    legs of the fold, which face each other at distance h. A larger r_ex would miss that real
-///    contact, a smaller one would take the bend of a tight fold (chord < h) for contact.
-/// The default recommendation is r_ex = pi h / 2. Because the reference distance of two
+///    legs of the fold, which face each other at distance h. A smaller r_ex would take the
+///    bend of a tight fold (chord < h) for contact; a larger one misses the contact of the legs
+///    within (r_ex - pi h / 2) / 2 of the bend.
+///  - At a cone's apex two points on opposite sides at reference radius r are only about
+///    c r apart (c < 2, the fold chord), so r_ex decides how close to the apex contact is
+///    counted. The scene's default is 8 h, the apex model of docs/contact.md: pairs
+///    straddling the apex within 4 h of it, where the sheet's curvature is not small against
+///    1 / h, are one piece of material.
+/// Because the reference distance of two
 /// primitives is taken between their vertices, it exceeds the smallest reference distance
 /// between points of the two primitives by at most one proxy edge length: refine the proxy so
 /// that its edges are small against pi h / 2 - h = 0.57 h, or read r_ex as known to that
@@ -53,8 +59,8 @@ struct ContactCandidateOptions {
   /// proxy's sag margin (proxy_sag) plus the largest motion expected before the next query.
   double query_distance = 0.0;
   /// Exclusion radius r_ex (finite, >= 0): pairs whose reference distance (see the file
-  /// comment) is below r_ex are neighbours on the sheet and never reported. Recommended
-  /// pi h / 2; meaningful in [h, pi h / 2].
+  /// comment) is below r_ex are neighbours on the sheet and never reported; at least pi h / 2
+  /// (see the file comment; the scene default is 8 h).
   double exclusion_radius = 0.0;
 };
 

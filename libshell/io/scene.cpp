@@ -65,7 +65,8 @@ const NameTable<GrowthSmoothingProfile> kSmoothingProfileNames = {
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
 const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"},
-                                              {StudyKind::ThicknessSeries, "thickness_series"}};
+                                              {StudyKind::ThicknessSeries, "thickness_series"},
+                                              {StudyKind::EconeContact, "econe_contact"}};
 
 template <class Enum>
 std::string enum_name(const NameTable<Enum>& names, Enum value) {
@@ -342,6 +343,18 @@ const Field kFields[] = {
   {"study.phi_max_limit",
    [](Scene& s, const Json& v, const std::string& k) { s.study.phi_max_limit = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.phi_max_limit); }},
+  {"study.skew_search_at",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.skew_search_at = read_number_or_auto(v, k); },
+   [](const Scene& s) { return write_number_or_auto(s.study.skew_search_at); }},
+  {"study.contact_max_step",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_max_step = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.contact_max_step); }},
+  {"study.penalty_stiffness_factor",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
+   [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},
+  {"study.ipopt_check",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.ipopt_check = read_bool(v, k); },
+   [](const Scene& s) { return Json(s.study.ipopt_check); }},
 };
 // clang-format on
 
@@ -504,6 +517,9 @@ void validate_scene(const Scene& scene) {
   require_positive(st.symmetry_threshold, "study.symmetry_threshold");
   require_nonnegative(st.core_radius, "study.core_radius");
   require_finite(st.phi_max_limit, "study.phi_max_limit");
+  if (st.skew_search_at) require_positive(*st.skew_search_at, "study.skew_search_at");
+  require_positive(st.contact_max_step, "study.contact_max_step");
+  require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");
   if (st.kind == StudyKind::ThicknessSeries) {
     if (st.thicknesses.size() < 2)
       fail("study.thicknesses must list at least two thicknesses for study.kind = "
@@ -627,7 +643,7 @@ double resolved_min_spacing(const Scene& scene) {
 double resolved_exclusion_radius(const Scene& scene) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   const double distance = scene.physics.contact_distance.value_or(h);
-  if (!scene.physics.contact_exclusion_radius) return 0.5 * std::numbers::pi * h;
+  if (!scene.physics.contact_exclusion_radius) return kApexExclusionThicknesses * h;
   const double radius = *scene.physics.contact_exclusion_radius;
   if (!(radius >= distance))
     fail("physics.contact_exclusion_radius = " + format(radius) +

@@ -144,9 +144,8 @@ struct ScenePhysics {
   std::optional<double> contact_distance;
   /// Pairs of points closer than this (m) to each other in the reference (geodesic distance on
   /// the reference sheet) are neighbours, never contact, >= the contact distance. Unset
-  /// ("auto") means pi h / 2 with h the thickness at the centre (resolved by
-  /// resolved_exclusion_radius). It decides whether the sheet's tight fold at the cone's apex
-  /// counts as contact: see docs/contact.md, "Exclusion radius".
+  /// ("auto") means 8 h with h the thickness at the centre (kApexExclusionThicknesses,
+  /// resolved by resolved_exclusion_radius): the apex model of docs/contact.md.
   std::optional<double> contact_exclusion_radius;
 };
 
@@ -197,9 +196,13 @@ enum class StudyKind {
   /// point and phi_e^max fitted as power laws of h (studies/thickness_series_study.hpp,
   /// docs/guide/thickness_series.md).
   ThicknessSeries,
+  /// The two-fold cone through self-contact (the paper's Fig. 4): the cone_branch study up to
+  /// first contact, then the symmetric branch with the contact penalty, the skewed branch and
+  /// phi_e^crit both ways (studies/econe_contact_study.hpp, docs/guide/econe_contact.md).
+  EconeContact,
 };
 
-/// The study's name in scene files: "cone_branch" or "thickness_series".
+/// The study's name in scene files: "cone_branch", "thickness_series" or "econe_contact".
 std::string study_kind_name(StudyKind kind);
 
 /// The study a scene asks for and those of its settings that change its results (the
@@ -244,6 +247,20 @@ struct SceneStudy {
   /// thickness_series only: the h -> 0 value of phi_e^max (rad) that the fit
   /// phi_e^max - L = A h^p approaches: 2.57, the h -> 0 cone's (../shared/docs/physics.md).
   double phi_max_limit = 2.57;
+  /// econe_contact only: the symmetric state pushed along its lowest modes and relaxed to find
+  /// the skewed cone is the symmetric branch's first sample at or beyond this phi_e (rad, > 0);
+  /// unset ("auto"): its last sample (continuation.phi_max).
+  std::optional<double> skew_search_at;
+  /// econe_contact only: the largest arclength step of the branches with contact (> 0).
+  double contact_max_step = 0.02;
+  /// econe_contact only: the penalty stiffness k = F Y l^2 / h, l the contact proxy's spacing
+  /// (docs/contact.md, "Penalty stiffness"); this is F (> 0).
+  double penalty_stiffness_factor = 10.0;
+  /// econe_contact only: solve the relaxed skewed state again with Ipopt under the hard
+  /// constraints gap >= contact distance, and report the difference in results.json. Off by
+  /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both
+  /// cones are free of contact, where penalty and hard constraints coincide.
+  bool ipopt_check = false;
 };
 
 /// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.
@@ -314,10 +331,18 @@ double thickness_at_radius(const ThicknessProfile& profile, double r, double rad
 /// at the centre (r = 0) for the rings and gmsh families and half of it for the others.
 double resolved_min_spacing(const Scene& scene);
 
-/// The contact exclusion radius (m): physics.contact_exclusion_radius if set, else pi h / 2
-/// with h the thickness at the centre (r = 0). Throws std::invalid_argument naming the key if
-/// it is below the contact distance (physics.contact_distance, or that thickness if unset):
-/// neighbours on a flat sheet would then count as touching.
+/// The default contact exclusion radius in thicknesses at the centre: the apex model
+/// (docs/contact.md, "The apex model"). Two points on opposite sides of a cone's apex are
+/// neighbours within reference radius 4 h of it, where the sheet's curvature (about 1/r) is not
+/// small against 1/h and the thin shell does not describe it; farther out they are two
+/// surfaces that may touch. phi_e^crit by energy does not depend on it from 4 h on.
+inline constexpr double kApexExclusionThicknesses = 8.0;
+
+/// The contact exclusion radius (m): physics.contact_exclusion_radius if set, else
+/// kApexExclusionThicknesses h with h the thickness at the centre (r = 0). Throws
+/// std::invalid_argument naming the key if it is below the contact distance
+/// (physics.contact_distance, or that thickness if unset): neighbours on a flat sheet would
+/// then count as touching.
 double resolved_exclusion_radius(const Scene& scene);
 
 /// Thickness field over reference positions X (m): thickness_at_radius at r = |(X_x, X_y)|.

@@ -22,7 +22,8 @@ namespace growshell {
 struct ContactSolveOptions {
   /// Mid-surface distance at which two parts touch (> 0), e.g. the thickness h.
   double contact_distance = 0.0;
-  /// Pairs closer than this in the reference are neighbours, never contact (> 0; pi h / 2).
+  /// Pairs closer than this in the reference are neighbours, never contact (> 0; the scene
+  /// default is 8 h, docs/contact.md).
   double exclusion_radius = 0.0;
   /// Pairs closer than contact_distance + candidate_margin at the start of a solve become
   /// constraints (> 0). It bounds how far two parts may approach during one solve without

@@ -143,7 +143,8 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
   };
   ContactBranchOptions skewed_options = o;
   skewed_options.symmetric_subspace = nullptr;  // the skewed branch breaks the symmetry
-  skewed_options.arclength.parameter_min = phi0 - 1.0;
+  skewed_options.arclength.parameter_min =
+      std::isnan(options.skewed_min) ? phi0 - 1.0 : options.skewed_min;
   skewed_options.arclength.parameter_max = options.skewed_end;
   skewed_options.arclength.max_steps = options.max_steps_per_branch;
   std::optional<double> entered_at;  // branch point the skewed branch was entered at
@@ -205,9 +206,12 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
         SelfIntersectionOptions si;
         si.exclusion_radius = o.exclusion_radius;
         const bool crossed = find_self_intersection(model, y, si).intersects;
+        std::string why_not;
+        const bool accepted = !options.accept_skewed || options.accept_skewed(y, why_not);
         m << " mode " << k << " push " << sign << ": energy " << energy << " (symmetric "
-          << out.symmetric_top_energy << ")" << (crossed ? ", passes through itself" : "") << ";";
-        if (!crossed &&
+          << out.symmetric_top_energy << ")" << (crossed ? ", passes through itself" : "")
+          << (accepted ? "" : ", not skewed: " + why_not) << ";";
+        if (!crossed && accepted &&
             energy < best_energy - options.energy_margin * std::abs(out.symmetric_top_energy)) {
           best_energy = energy;
           best = y;

@@ -45,9 +45,12 @@ struct EconeBranchOptions {
   /// applies to the symmetric branch only.
   ContactBranchOptions contact;
   double symmetric_end = 10.0;  ///< the symmetric branch is followed up to this phi_e
-  /// The skewed branch is followed up to this phi_e (e.g. beyond 4 pi), and down to
-  /// phi_start - 1 at most.
+  /// The skewed branch is followed up to this phi_e (e.g. beyond 4 pi).
   double skewed_end = 10.0;
+  /// The skewed branch is followed down to this phi_e at most (NaN: phi_start - 1). Its
+  /// lower end can lie well below the start: at h = 0.04 the skewed cone exists without
+  /// contact a whole radian below first contact.
+  double skewed_min = std::numeric_limits<double>::quiet_NaN();
   int max_steps_per_branch = 600;
   bool trace_skewed = true;  ///< false: the symmetric branch only
   SkewedStart skewed_start = SkewedStart::Top;
@@ -62,6 +65,12 @@ struct EconeBranchOptions {
   /// A relaxed state counts as a different (skewed) state only if its energy is lower than
   /// the symmetric one by this fraction.
   double energy_margin = 1e-4;
+  /// If set, a relaxed state counts as skewed only if this accepts it, and the reason it gives
+  /// otherwise goes to skewed_message. E.g. the cone studies reject a state that keeps the
+  /// cone's S4 symmetry: the symmetric cone turned about its axis, which a mesh makes slightly
+  /// cheaper than the traced one once contact pairs differ (on gmsh_d4 at h = 0.04, 0.19 %
+  /// below it at phi_e = 7.2).
+  std::function<bool(const Eigen::VectorXd& x, std::string& why_not)> accept_skewed;
   /// Newton settings of the relaxation (minimisation of shell + penalty at fixed phi_e).
   NewtonOptions relaxation;
   /// Crossings closer than this to the branch point the skewed branch was entered at are the

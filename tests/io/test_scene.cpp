@@ -73,7 +73,7 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_FALSE(s.physics.contact);
   EXPECT_FALSE(s.physics.contact_distance.has_value());
   EXPECT_FALSE(s.physics.contact_exclusion_radius.has_value());
-  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.02);
+  EXPECT_EQ(resolved_exclusion_radius(s), 8 * 0.02);  // the apex model: 8 h
   EXPECT_EQ(s.continuation.phi_start, 0.0);
   EXPECT_EQ(s.continuation.phi_max, 3.73);
   EXPECT_EQ(s.continuation.max_step, 0.1);
@@ -156,7 +156,7 @@ Scene everything_changed() {
 TEST(Scene, ExclusionRadiusFollowsAThicknessOverrideAndMustReachTheContactDistance) {
   Scene s = default_scene();
   apply_override(s, "thickness", "0.04");
-  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.04);
+  EXPECT_EQ(resolved_exclusion_radius(s), 8 * 0.04);
   apply_override(s, "physics.contact_exclusion_radius", "0.16");
   EXPECT_EQ(resolved_exclusion_radius(s), 0.16);
   // Below the contact distance neighbours on a flat sheet would be taken for contact.
@@ -170,7 +170,7 @@ TEST(Scene, ExclusionRadiusFollowsAThicknessOverrideAndMustReachTheContactDistan
   EXPECT_EQ(error_of([&] { validate_scene(s); }),
             "physics.contact_exclusion_radius = -1 must be finite and > 0");
   apply_override(s, "physics.contact_exclusion_radius", "auto");
-  EXPECT_EQ(resolved_exclusion_radius(s), 0.5 * std::numbers::pi * 0.04);
+  EXPECT_EQ(resolved_exclusion_radius(s), 8 * 0.04);
 }
 
 TEST_F(SceneFileTest, MeshFamiliesBuildTheirMeshes) {
@@ -364,6 +364,24 @@ TEST(Scene, ModelFingerprintChangesWithTheModelOnly) {
   Scene explicit_floor = base;
   explicit_floor.mesh.min_spacing = resolved_min_spacing(base);
   EXPECT_EQ(scene_model_fingerprint(explicit_floor), f);
+}
+
+TEST(Scene, EveryShippedSceneReadsAndValidates) {
+  // The scenes a user runs as they are: examples/scenes/ and the paper's, scenes/paper/.
+  int read = 0;
+  for (const char* folder : {"examples/scenes", "scenes/paper"}) {
+    for (const auto& entry : fs::directory_iterator(repo_root() / folder)) {
+      if (entry.path().extension() != ".json") continue;
+      SCOPED_TRACE(entry.path().string());
+      const Scene scene = read_scene(entry.path().string());
+      EXPECT_NO_THROW(validate_scene(scene));
+      ++read;
+    }
+  }
+  EXPECT_GE(read, 4);
+  const Scene fig4 = read_scene((repo_root() / "scenes/paper/fig4_econe_contact_h004.json").string());
+  EXPECT_EQ(fig4.study.kind, StudyKind::EconeContact);
+  EXPECT_EQ(resolved_exclusion_radius(fig4), 8 * 0.04);  // the default apex model
 }
 
 TEST(Scene, ExampleFileIsTheDefaultSceneInFull) {

@@ -8,8 +8,11 @@
 # Variables: PROGRAM (trace_disc), EIGEN_PROGRAM (branch_eigenvalues), OUT.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
+# The exclusion radius is pi h / 2 (not the default 8 h), so that the trace meets the gap = h
+# event at the apex core below 5.8 and stops there.
 file(WRITE "${OUT}/scene.json"
-     "{\"thickness\": 0.04, \"continuation\": {\"phi_max\": 5.8}}\n")
+     "{\"thickness\": 0.04, \"continuation\": {\"phi_max\": 5.8},\n"
+     " \"physics\": {\"contact_exclusion_radius\": 0.06283185307179587}}\n")
 execute_process(COMMAND "${PROGRAM}" "${OUT}/scene.json" --through-contact 1 --eigenmodes 0
                         --out "${OUT}/trace"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)

@@ -1,0 +1,143 @@
+#!/usr/bin/python3
+"""The two e-cone branches of an econe_contact study: writes DIR/econe_contact.png.
+
+usage: scripts/plot_econe_contact.py DIR
+
+DIR is an econe_contact study's output directory (growshell run). Top: E_b-hat against phi_e
+of the contact-free cone (cone/branch.csv), the symmetric branch with contact
+(symmetric/branch.csv) and the skewed branch (skewed/branch.csv), stable samples
+(n_negative = 0) solid and unstable ones dashed. Bottom: the total energy of each branch
+relative to the symmetric branch's at the same phi_e, (E - E_sym) / E_sym, so that the crossing
+shows. The special values of results.json (first contact, phi_e^crit by stability and by
+energy) are marked with their phi_e. Needs matplotlib (Debian: python3-matplotlib).
+"""
+import csv
+import json
+import math
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from plot_study import stability_runs  # noqa: E402  (runs of equal stability, shared ends)
+
+
+def fail(message):
+    sys.exit(f"plot_econe_contact.py: {message}")
+
+
+def read_rows(path, columns):
+    if not path.is_file():
+        return []
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for column in columns:
+        if rows and column not in rows[0]:
+            fail(f"{path} has no column '{column}'")
+    return [{c: float(r[c]) for c in columns} for r in rows]
+
+
+def total_energy(row):
+    return row["E_stretch"] + row["E_bend"] + row.get("E_penalty", 0.0)
+
+
+def symmetric_energy_at(phi, symmetric):
+    """The symmetric branch's total energy at phi: linear between the samples bracketing it
+    (the branch is traced by increasing phi_e); None outside it."""
+    for a, b in zip(symmetric, symmetric[1:]):
+        if a["phi_e"] <= phi <= b["phi_e"] and a["phi_e"] != b["phi_e"]:
+            t = (phi - a["phi_e"]) / (b["phi_e"] - a["phi_e"])
+            return total_energy(a) + t * (total_energy(b) - total_energy(a))
+    return None
+
+
+def main():
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
+        sys.exit(__doc__)
+    directory = pathlib.Path(sys.argv[1])
+    if not directory.is_dir():
+        fail(f"{directory} is not a directory")
+    results_path = directory / "results.json"
+    if not results_path.is_file():
+        fail(f"{directory} has no results.json (not a finished econe_contact study?)")
+    results = json.loads(results_path.read_text())
+    if results.get("study") != "econe_contact":
+        fail(f"{results_path} is not an econe_contact study's (study: {results.get('study')})")
+    base = ["phi_e", "E_stretch", "E_bend", "Eb_hat", "n_negative"]
+    cone = [r for r in read_rows(directory / "cone" / "branch.csv", base)
+            if r["phi_e"] >= (results.get("phi_branch") or 0.0)]
+    contact = base + ["E_penalty"]
+    symmetric = read_rows(directory / "symmetric" / "branch.csv", contact)
+    skewed = read_rows(directory / "skewed" / "branch.csv", contact)
+    if not cone and not symmetric:
+        fail(f"{directory} has neither cone/branch.csv nor symmetric/branch.csv samples")
+    # The skewed branch is written as traced: down from the relaxed state, then up from it.
+    skewed.sort(key=lambda r: r["phi_e"])
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        fail("needs matplotlib (Debian: apt-get install python3-matplotlib)")
+
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True,
+                                      gridspec_kw={"height_ratios": [3, 2]})
+    reference = cone + symmetric
+    branches = [("cone without contact", cone, "tab:gray"),
+                ("symmetric, with contact", symmetric, "tab:blue"),
+                ("skewed, with contact", skewed, "tab:red")]
+    for name, rows, color in branches:
+        labelled = False
+        for first, last, stable in stability_runs([r["n_negative"] for r in rows]):
+            run = rows[first:last + 1]
+            label = None
+            if not labelled:
+                label = name
+                labelled = True
+            style = "-" if stable else "--"
+            top.plot([r["phi_e"] for r in run], [r["Eb_hat"] for r in run], style, color=color,
+                     linewidth=1.5, label=label)
+            points = [(r["phi_e"], symmetric_energy_at(r["phi_e"], reference), total_energy(r))
+                      for r in run]
+            points = [(p, (e - s) / s) for p, s, e in points if s]
+            if points:
+                bottom.plot([p for p, _ in points], [v for _, v in points], style, color=color,
+                            linewidth=1.5)
+    top.plot([], [], "k-", label="stable")
+    top.plot([], [], "k--", label="unstable")
+    # (key, label, relation, colour): a phi_e^crit by energy met only at the skewed trace's
+    # lowest sample is an upper bound.
+    bound = results.get("phi_crit_energy_criterion") == "lowest_sample"
+    marks = [("phi_first_contact", "first contact", "=", "tab:green"),
+             ("phi_crit_stability", r"$\phi_e^{crit}$ (stability)", "=", "tab:purple"),
+             ("phi_crit_energy", r"$\phi_e^{crit}$ (energy)", r"$\leq$" if bound else "=",
+              "black")]
+    for row, (key, label, relation, color) in enumerate(marks):
+        value = results.get(key)
+        if isinstance(value, (int, float)) and math.isfinite(value):
+            for axis in (top, bottom):
+                axis.axvline(value, color=color, linestyle=":", linewidth=1.2)
+            top.annotate(f"{label} {relation} {value:.4f}", (value, 1.0),
+                         xycoords=("data", "axes fraction"), xytext=(3, -12 - 12 * row),
+                         textcoords="offset points", fontsize=8, color=color)
+    mesh = results.get("mesh", {})
+    slope = mesh.get("size_slope")
+    size = f", size_slope {slope:g}" if slope is not None else ""
+    top.set_title(f"e-cone through contact: h = {results.get('thickness'):g} m, "
+                  f"{mesh.get('family')} mesh{size}, exclusion radius "
+                  f"{results.get('exclusion_radius', float('nan')) / results.get('thickness', 1):.3g} h")
+    top.set_ylabel(r"normalised bending energy $\hat{E}_b$ (1/m$^2$)")
+    bottom.set_ylabel(r"$(E - E_{sym}) / E_{sym}$, $E = E_s + E_b + E_{penalty}$")
+    bottom.set_xlabel(r"excess angle $\phi_e$ (rad)")
+    bottom.axhline(0.0, color="tab:blue", linewidth=0.8)
+    for axis in (top, bottom):
+        axis.grid(True, alpha=0.3)
+    top.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    # Written whole, then renamed: a reader never sees half a figure.
+    temporary = directory / ".econe_contact.png.tmp"
+    fig.savefig(temporary, dpi=120, format="png")
+    temporary.replace(directory / "econe_contact.png")
+
+
+if __name__ == "__main__":
+    main()

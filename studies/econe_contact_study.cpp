@@ -1,0 +1,450 @@
+#include "studies/econe_contact_study.hpp"
+
+#include <Eigen/Core>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "libshell/analysis/cone_symmetry.hpp"
+#include "libshell/analysis/contact_zones.hpp"
+#include "libshell/contact/contact_penalty.hpp"
+#include "libshell/contact/contact_proxy.hpp"
+#include "solvers/contact/econe_branches.hpp"
+#include "solvers/contact/hard_contact_solve_options.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
+#include "studies/atomic_file.hpp"
+#include "studies/branch_record.hpp"
+#include "studies/cone_branch_study.hpp"
+#include "studies/cone_mirror_subspace.hpp"
+#include "studies/ground_state_exchange.hpp"
+#include "studies/saved_state.hpp"
+#include "studies/turn_free_stability_index.hpp"
+
+namespace growshell {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The columns of DIR/symmetric/branch.csv and DIR/skewed/branch.csv.
+const std::vector<std::string> kColumns = {
+    "phi_e",         "E_stretch",   "E_bend",       "E_penalty",  "Eb_hat",
+    "area",          "min_distance", "active_pairs", "contact_force", "gamma",
+    "n_negative",    "dE_dphi",     "arclength",    "corrector_iterations", "s4_defect",
+    "chord_up",      "chord_down"};
+
+constexpr const char* kConeDir = "cone";
+
+std::string fixed(double v, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
+
+/// One run of the study: stage 1 delegated to the cone_branch study, stages 2-4 here.
+class EconeContactRun {
+ public:
+  EconeContactRun(const Scene& scene, ExistingOutput existing, const StudyProgress& progress);
+  EconeContactResults run();
+
+ private:
+  void say(const std::string& line) const {
+    if (progress_) progress_(line);
+  }
+  void trace_cone();
+  void set_up_contact();
+  std::vector<BranchEnergySample> cone_energies(double below) const;
+  void on_sample(EconeBranch which, const ContactBranchSample& s);
+  void on_special(EconeBranch which, const SpecialPoint& sp);
+  void summarize(const EconeBranchResult& traced);
+  BranchRecord& record(EconeBranch which) {
+    return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
+  }
+
+  Scene scene_;
+  ExistingOutput existing_;
+  StudyProgress progress_;
+  std::string dir_;
+  double h_ = 0.0;
+  std::unique_ptr<ShellModel> model_;
+  std::uint64_t fingerprint_ = 0;
+  std::vector<Eigen::Index> pinned_;
+  std::unique_ptr<ContactProxy> proxy_;
+  EconeBranchOptions options_;
+  BranchSample start_;  ///< the cone's last state
+  std::unique_ptr<BranchRecord> symmetric_, skewed_;
+  bool stability_lost_ = false;
+  EconeContactResults results_;
+};
+
+EconeContactRun::EconeContactRun(const Scene& scene, ExistingOutput existing,
+                                 const StudyProgress& progress)
+    : scene_(scene), existing_(existing), progress_(progress), dir_(scene.output.directory) {
+  validate_scene(scene_);
+  if (scene_.study.kind != StudyKind::EconeContact)
+    throw std::invalid_argument("run_econe_contact_study: the scene's study.kind is " +
+                                study_kind_name(scene_.study.kind) + ", not econe_contact");
+  if (scene_.continuation.mode != 2)
+    throw std::invalid_argument(
+        "continuation.mode = " + std::to_string(scene_.continuation.mode) +
+        ": the econe_contact study follows the two-fold cone and its skewed cone (mode 2)");
+  if (scene_.continuation.direction != ContinuationDirection::Forward)
+    throw std::invalid_argument(
+        "continuation.direction = backward: the econe_contact study grows from the flat sheet");
+  check_econe_contact_directory(dir_, existing_);
+  // The model (a missing mesh file, a mesh that cannot be built) before anything is written.
+  model_ = std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_));
+  fingerprint_ = scene_model_fingerprint(scene_);
+  h_ = thickness_at_radius(scene_.thickness, 0.0, scene_.geometry.radius);
+  if (existing_ == ExistingOutput::Resume && fs::exists(fs::path(dir_) / kConeDir / "scene.json"))
+    check_resumable_scene((fs::path(dir_) / kConeDir).string(), econe_contact_cone_scene(scene_));
+}
+
+/// Stage 1: the contact-free cone up to first contact, and its last state.
+void EconeContactRun::trace_cone() {
+  const Scene cone_scene = econe_contact_cone_scene(scene_);
+  const std::string cone_dir = cone_scene.output.directory;
+  ConeBranchStudyOptions options = cone_branch_study_options(cone_scene);
+  if (existing_ == ExistingOutput::Resume) options.start = ConeBranchStart::LastState;
+  say("# stage 1: the cone without contact up to first contact, into " + cone_dir);
+  const ConeBranchStudy cone = run_cone_branch_study(cone_scene, options, cone_dir, progress_);
+  results_.phi_branch = cone.results.phi_branch;
+  results_.phi_first_contact = cone.results.phi_gap_h;
+  results_.phi_max = cone.results.phi_max;
+  results_.eb_hat_max = cone.results.eb_hat_max;
+  if (!cone.entered_cone)
+    throw std::runtime_error("the flat sheet has no two-fold branch point below phi_max: " +
+                             cone.results.end);
+  const std::string last = BranchRecord::committed_last_state(cone_dir);
+  if (last.empty()) throw std::runtime_error(cone_dir + " holds no state to go on from");
+  start_ = load_branch_state(cone_dir + "/" + last, model_->dimension(), fingerprint_);
+  results_.phi_contact_start = start_.parameter;
+}
+
+/// The settings of stages 2-4 (as trace_contact's, from the scene), the proxy and the pins.
+void EconeContactRun::set_up_contact() {
+  const SceneStudy& st = scene_.study;
+  const Eigen::VectorXd& X = model_->reference_positions();
+  const Eigen::MatrixX3d P =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+  // The cone study's pins (on the mesh's mirror axes), so that symmetric states stay symmetric.
+  pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
+  proxy_ = std::make_unique<ContactProxy>(make_contact_proxy(*model_, 1));
+
+  ContactBranchOptions& c = options_.contact;
+  c.contact_distance = scene_.physics.contact_distance.value_or(h_);
+  c.exclusion_radius = resolved_exclusion_radius(scene_);
+  c.candidate_margin = h_;
+  c.stiffness = st.penalty_stiffness_factor *
+                contact_stiffness_scale(scene_.material.youngs_modulus, h_,
+                                        proxy_mean_edge_length(*proxy_));
+  c.violation_tolerance = 0.25 * h_;
+  // Rim vertices pinned on the reference come round next to the pinning axis as the cone grows
+  // (ContactBranchOptions::repin_above_condition).
+  c.repin_above_condition = 20.0;
+  c.arclength.initial_step = st.contact_max_step / 4;
+  c.arclength.max_step = st.contact_max_step;
+  c.arclength.min_step = 1e-6;
+  c.arclength.gradient_tolerance = st.tolerance * model_->natural_force_scale();
+  c.arclength.max_tangent_angle = 0.5;
+  // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
+  // finite angle over any step: short steps are accepted on a converged corrector alone.
+  c.arclength.angle_test_max_step = 0.02 * st.contact_max_step;
+  if (st.index_excludes_pattern_turn) {
+    const ShellModel& model = *model_;
+    const std::vector<Eigen::Index> pins = pinned_;
+    c.stability_index = [&model, pins](const ParametrizedObjective& energy,
+                                       const BranchSample& s) {
+      TurnFreeStabilityIndex index(energy, model, pins);
+      return index.at(s.x, s.parameter);
+    };
+  }
+  if (st.symmetric_subspace) {
+    ConeSubspaceChoice choice = cone_mirror_subspace(*model_, scene_.geometry.radius, 2);
+    if (!choice.note.empty()) say("# " + choice.note);
+    choice = subspace_for_start(std::move(choice.subspace), start_.x, 0.1 * h_);
+    if (!choice.note.empty()) say("# " + choice.note);
+    c.symmetric_subspace = std::move(choice.subspace);
+  }
+
+  options_.symmetric_end = scene_.continuation.phi_max;
+  options_.skewed_end = scene_.continuation.phi_max;
+  options_.skewed_start = SkewedStart::Top;
+  // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
+  options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
+  options_.skew_search_at =
+      st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
+  // A relaxed state that keeps S4 is the symmetric cone in another frame (turned about the
+  // axis against the mesh), not a skewed cone.
+  {
+    const ShellModel& model = *model_;
+    const double threshold = st.symmetry_threshold;
+    options_.accept_skewed = [&model, threshold](const Eigen::VectorXd& x, std::string& why_not) {
+      double defect = 0.0;
+      try {
+        defect = measure_cone_symmetry(model, x).s4.defect;
+      } catch (const std::exception& e) {
+        why_not = std::string("no S4 defect (") + e.what() + ")";
+        return false;
+      }
+      if (defect > threshold) return true;
+      std::ostringstream text;
+      text << "keeps S4 (defect " << defect << "), the symmetric cone turned about its axis";
+      why_not = text.str();
+      return false;
+    };
+  }
+  options_.relaxation.gradient_tolerance = c.arclength.gradient_tolerance;
+  // The decrement test stops Newton's crawl along the nearly free turn of the fold pattern.
+  options_.relaxation.decrement_tolerance =
+      1e-6 * scene_.material.youngs_modulus * h_ * h_ * h_;
+  options_.relaxation.max_iterations = 400;
+  if (st.ipopt_check)
+    options_.verify_with_ipopt =
+        hard_contact_solve_options(*model_, h_, c.contact_distance, c.exclusion_radius,
+                                   c.candidate_margin, options_.relaxation);
+  options_.symmetric_before = cone_energies(start_.parameter);
+
+  results_.contact_distance = c.contact_distance;
+  results_.exclusion_radius = c.exclusion_radius;
+  results_.penalty_stiffness = c.stiffness;
+  say("# stage 2: contact distance " + fixed(c.contact_distance, 5) + " m, exclusion radius " +
+      fixed(c.exclusion_radius, 5) + " m (" + fixed(c.exclusion_radius / h_, 3) +
+      " h), penalty k = " + fixed(c.stiffness, 1) + " N/m, proxy of " +
+      std::to_string(proxy_->num_vertices()) + " vertices");
+}
+
+/// The contact-free cone's energies and slopes below `below`, by increasing phi_e from its
+/// branch point on: the symmetric branch ahead of the trace with contact, for the crossing.
+std::vector<BranchEnergySample> EconeContactRun::cone_energies(double below) const {
+  const std::string cone_dir = (fs::path(dir_) / kConeDir).string();
+  std::vector<BranchEnergySample> out;
+  const double from = results_.phi_branch.value_or(0.0);
+  for (const fs::path& file : saved_state_files(cone_dir)) {
+    const BranchSample s = load_branch_state(file.string(), model_->dimension(), fingerprint_);
+    if (!(s.parameter > from && s.parameter < below)) continue;
+    if (!out.empty() && !(s.parameter > out.back().parameter)) continue;
+    const ContactBranchSample d =
+        describe_contact_sample(*model_, *proxy_, s, ContactCandidates{}, options_.contact);
+    out.push_back({s.parameter, d.stretching_energy + d.bending_energy, d.energy_slope});
+  }
+  return out;
+}
+
+void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s) {
+  double gamma = std::numeric_limits<double>::quiet_NaN(), force = 0.0;
+  if (!s.pairs.empty() && s.active_pairs > 0) {
+    const ContactGapConstraints gaps(*proxy_, s.pairs, options_.contact.contact_distance,
+                                     model_->dimension(), options_.contact.gap);
+    // Zones: pairs within 0.1 R of each other whose normals differ by less than 30 degrees, so
+    // that the upper and lower contact of the cone, which meet at the apex, stay apart.
+    gamma = contact_plane_angle(contact_zones(gaps, s.sample.x, s.forces,
+                                              0.1 * scene_.geometry.radius, 1e-3,
+                                              std::numbers::pi / 6));
+    force = s.forces.sum();
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double defect = nan, up = nan, down = nan;
+  try {
+    const ConeSymmetry symmetry = measure_cone_symmetry(*model_, s.sample.x);
+    defect = symmetry.s4.defect;
+    up = symmetry.chords.chord_up;
+    down = symmetry.chords.chord_down;
+  } catch (const std::exception&) {
+    // A state without fold directions has no S4 defect: NaN in the record.
+  }
+  if (which == EconeBranch::Symmetric && std::isfinite(defect))
+    results_.max_s4_defect_symmetric =
+        std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
+  const ContactBranchSample& c = s;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-9s %9.5f %12.5e %12.5e %10.3e %8.4f %3d %7.4f %5d %9.2e %3d",
+                to_string(which), c.sample.parameter, c.stretching_energy, c.bending_energy,
+                c.penalty_energy, c.normalized_bending, c.sample.negative_eigenvalues, gamma,
+                c.active_pairs, defect, c.sample.corrector_iterations);
+  say(line);
+  BranchRecord& r = record(which);
+  r.append_row({c.sample.parameter, c.stretching_energy, c.bending_energy, c.penalty_energy,
+                c.normalized_bending, c.current_area, c.min_distance,
+                static_cast<double>(c.active_pairs), force, gamma,
+                static_cast<double>(c.sample.negative_eigenvalues), c.energy_slope,
+                c.sample.arclength, static_cast<double>(c.sample.corrector_iterations), defect, up,
+                down});
+  r.save_state(c.sample, fingerprint_);
+  r.commit();
+}
+
+void EconeContactRun::on_special(EconeBranch which, const SpecialPoint& sp) {
+  std::ostringstream j;
+  j << std::setprecision(10) << "{\"kind\": \"" << to_string(sp.kind)
+    << "\", \"phi_e\": " << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
+    << ", \"negative_before\": " << sp.negative_before
+    << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width
+    << "}";
+  record(which).add_event(j.str(), {to_string(sp.kind),
+                                    sp.parameter,
+                                    to_string(which),
+                                    {{"multiplicity", static_cast<double>(sp.multiplicity)},
+                                     {"negative_before", static_cast<double>(sp.negative_before)},
+                                     {"negative_after", static_cast<double>(sp.negative_after)}}});
+  say("# " + std::string(to_string(which)) + " branch: " + to_string(sp.kind) + " at phi_e = " +
+      fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) + " -> " +
+      std::to_string(sp.negative_after) + ")");
+  record(which).commit();
+}
+
+/// The key values of stages 2-4.
+void EconeContactRun::summarize(const EconeBranchResult& t) {
+  EconeContactResults& r = results_;
+  // First contact is the cone's gap = h event (on the limit surface) where the cone stopped
+  // there; the penalty's own event (proxy pairs, symmetric/events.json) only if it did not.
+  if (!r.phi_first_contact && t.first_contact) r.phi_first_contact = t.first_contact->parameter;
+  if (t.stability_loss) r.phi_crit_stability = t.stability_loss->parameter;
+  std::vector<double> crossings;
+  for (std::size_t i = 0; i < t.crossings.size(); ++i) {
+    const bool stable = i < t.crossing_skewed_stable.size() && t.crossing_skewed_stable[i];
+    r.crossings.push_back({t.crossings[i].parameter, t.crossings[i].error_estimate, stable});
+    crossings.push_back(t.crossings[i].parameter);
+  }
+  // The exchange of ground states: the symmetric branch (the cone without contact ahead of the
+  // trace with contact; only the skewed branch's stability matters), the skewed branch, and
+  // the skewed branch's special points.
+  std::vector<BranchStateSample> symmetric, skewed;
+  const auto add_rows = [](const BranchRecord& record, std::vector<BranchStateSample>& out) {
+    for (std::size_t row = 0; row < record.rows(); ++row)
+      out.push_back({record.value(row, "phi_e"),
+                     record.value(row, "E_stretch") + record.value(row, "E_bend") +
+                         record.value(row, "E_penalty"),
+                     static_cast<int>(record.value(row, "n_negative"))});
+  };
+  for (const BranchEnergySample& c : options_.symmetric_before)
+    symmetric.push_back({c.parameter, c.energy, 0});
+  add_rows(*symmetric_, symmetric);
+  add_rows(*skewed_, skewed);
+  std::vector<double> special;
+  for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
+  if (const auto exchange = ground_state_exchange(symmetric, skewed, crossings, special)) {
+    r.phi_crit_energy = exchange->phi_e;
+    r.phi_crit_energy_criterion = exchange->criterion;
+  }
+  r.skewed_found = t.skewed_found;
+  r.skewed_message = t.skewed_message;
+  if (t.skewed_found) {
+    r.skew_search_at = t.skew_search_parameter;
+    if (t.symmetric_top_energy != 0.0)
+      r.skewed_energy_below_symmetric =
+          (t.symmetric_top_energy - t.skewed_relaxed_energy) / t.symmetric_top_energy;
+  }
+  for (std::size_t row = 0; row < skewed_->rows(); ++row) {
+    const double phi = skewed_->value(row, "phi_e");
+    r.skewed_lowest_phi = std::min(r.skewed_lowest_phi.value_or(phi), phi);
+    r.skewed_highest_phi = std::max(r.skewed_highest_phi.value_or(phi), phi);
+  }
+  if (t.ipopt_checked) {
+    EconeIpoptCheck check;
+    check.converged = t.ipopt_converged;
+    check.message = t.ipopt_message;
+    if (t.ipopt_energy != 0.0)
+      check.relative_energy_difference =
+          (t.penalty_elastic_energy - t.ipopt_energy) / t.ipopt_energy;
+    check.state_difference_over_h = t.ipopt_state_difference / h_;
+    check.min_distance_over_h = t.ipopt_min_distance / h_;
+    r.ipopt = check;
+  }
+  std::string end;
+  if (!t.symmetric.reached_bound) end = "symmetric branch: " + t.symmetric.message;
+  if (!t.skewed_found)
+    end += std::string(end.empty() ? "" : "; ") + "no skewed cone: " + t.skewed_message;
+  for (const auto& [name, trace] : {std::pair{"downwards", &t.skewed_down},
+                                    std::pair{"upwards", &t.skewed_up}})
+    if (t.skewed_found && trace->steps > 0 && !trace->reached_bound)
+      end += std::string(end.empty() ? "" : "; ") + "skewed branch " + name + ": " +
+             trace->message;
+  r.completed = end.empty();
+  r.end = r.completed ? "completed" : end;
+}
+
+EconeContactResults EconeContactRun::run() {
+  const auto started = std::chrono::steady_clock::now();
+  fs::create_directories(dir_);
+  if (existing_ != ExistingOutput::Resume) fs::remove(fs::path(dir_) / "results.json");
+  write_file_atomically(dir_ + "/scene.json", scene_to_json(scene_));
+  trace_cone();
+  fs::remove(fs::path(dir_) / "results.json");  // stale once the branches are traced again
+  set_up_contact();
+  symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns,
+                                              BranchRecord::Start::Fresh);
+  skewed_ =
+      std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
+  say("# stage 2-4: the symmetric branch with contact from phi_e = " +
+      fixed(start_.parameter, 6) + ", the skewed cone, the crossing");
+  char header[256];
+  std::snprintf(header, sizeof header, "%-9s %9s %12s %12s %10s %8s %3s %7s %5s %9s %3s",
+                "branch", "phi_e", "E_stretch", "E_bend", "E_penalty", "Eb_hat", "neg", "gamma",
+                "n_c", "s4", "it");
+  say(header);
+  EconeBranchCallbacks callbacks;
+  callbacks.on_sample = [this](EconeBranch which, const ContactBranchSample& s) {
+    on_sample(which, s);
+  };
+  callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
+    on_special(which, sp);
+  };
+  callbacks.on_event = [this](const LocatedEvent& e) {
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"kind\": \"" << e.kind << "\", \"phi_e\": " << e.parameter
+      << ", \"bracket\": " << e.bracket_width << "}";
+    symmetric_->add_event(j.str(), {e.kind, e.parameter, "symmetric", {}});
+    symmetric_->commit();
+    say("# symmetric branch: event " + e.kind + " at phi_e = " + fixed(e.parameter, 7));
+  };
+  callbacks.on_note = [this](const std::string& text) { say("# " + text); };
+  const EconeBranchResult traced =
+      trace_econe_branches(*model_, *proxy_, start_.x, start_.parameter, pinned_, options_,
+                           callbacks);
+  summarize(traced);
+
+  EconeContactResults& r = results_;
+  r.thickness = h_;
+  r.mesh.family = mesh_family_name(scene_.mesh.family);
+  if (graded_by_size(scene_.mesh.family)) r.mesh.size_slope = scene_.mesh.size_slope;
+  r.mesh.elements = static_cast<long long>(model_->num_elements());
+  r.mesh.unknowns = static_cast<long long>(model_->dimension());
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  write_file_atomically(dir_ + "/results.json", econe_contact_results_json(r));
+  const auto show = [](const std::optional<double>& v) {
+    return v ? fixed(*v, 6) : std::string("none");
+  };
+  say("# first contact " + show(r.phi_first_contact) + ", stability lost " +
+      show(r.phi_crit_stability) + ", energy crossing " + show(r.phi_crit_energy) + "; " + r.end);
+  say("# wrote " + dir_ + "/results.json");
+  return r;
+}
+
+}  // namespace
+
+Scene econe_contact_cone_scene(const Scene& scene) {
+  Scene cone = scene;
+  cone.study.kind = StudyKind::ConeBranch;
+  cone.study.through_contact = false;
+  cone.output.directory = (fs::path(scene.output.directory) / kConeDir).string();
+  return cone;
+}
+
+void check_econe_contact_directory(const std::string& directory, ExistingOutput existing) {
+  check_output_directory(directory, existing, "study", std::string(kConeDir) + "/record.json");
+}
+
+EconeContactResults run_econe_contact_study(const Scene& scene, ExistingOutput existing,
+                                            const StudyProgress& progress) {
+  EconeContactRun run(scene, existing, progress);
+  return run.run();
+}
+
+}  // namespace growshell

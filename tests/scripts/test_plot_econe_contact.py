@@ -1,0 +1,68 @@
+"""scripts/plot_econe_contact.py on a small synthetic econe_contact directory: the figure is
+written (where matplotlib is installed), and a directory that is not such a study's output is
+refused with a message that names what is missing."""
+
+import json
+import os
+import tempfile
+
+from script_checks import Checks, run_script
+
+HEADER = ("phi_e,E_stretch,E_bend,E_penalty,Eb_hat,area,min_distance,active_pairs,contact_force,"
+          "gamma,n_negative,dE_dphi,arclength,corrector_iterations,s4_defect,chord_up,chord_down")
+
+
+def branch(path, rows, contact=True):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        if contact:
+            f.write(HEADER + "\n")
+            for phi, energy, negative in rows:
+                f.write(f"{phi},{energy / 2},{energy / 2},0,3.0,3.2,0.05,0,0,nan,{negative},"
+                        "0,0,1,0.01,0.2,0.2\n")
+        else:
+            f.write("phi_e,E_stretch,E_bend,Eb_hat,n_negative\n")
+            for phi, energy, negative in rows:
+                f.write(f"{phi},{energy / 2},{energy / 2},3.0,{negative}\n")
+
+
+def main():
+    check = Checks()
+    with tempfile.TemporaryDirectory() as d:
+        refused = run_script("plot_econe_contact.py", d)
+        check(refused.returncode != 0 and "results.json" in refused.stderr,
+              f"a directory without results.json is refused by name: {refused.stderr!r}")
+        with open(os.path.join(d, "results.json"), "w") as f:
+            json.dump({"study": "cone_branch"}, f)
+        wrong = run_script("plot_econe_contact.py", d)
+        check(wrong.returncode != 0 and "not an econe_contact" in wrong.stderr,
+              f"another study's results.json is refused: {wrong.stderr!r}")
+
+        results = {"study": "econe_contact", "thickness": 0.04, "exclusion_radius": 0.32,
+                   "mesh": {"family": "rings", "size_slope": 0.1}, "phi_branch": 0.017,
+                   "phi_first_contact": 6.55, "phi_crit_stability": 7.03,
+                   "phi_crit_energy": 6.3, "phi_crit_energy_criterion": "stabilised_below"}
+        with open(os.path.join(d, "results.json"), "w") as f:
+            json.dump(results, f)
+        branch(os.path.join(d, "cone", "branch.csv"),
+               [(0.0, 0.0, 0), (3.0, 0.8, 0), (6.0, 0.75, 0), (6.5, 0.74, 0)], contact=False)
+        branch(os.path.join(d, "symmetric", "branch.csv"),
+               [(6.5, 0.74, 0), (7.0, 0.737, 0), (7.3, 0.736, 1)])
+        # Written as traced: down from the relaxed state, then up.
+        branch(os.path.join(d, "skewed", "branch.csv"),
+               [(7.2, 0.733, 0), (6.4, 0.738, 0), (5.8, 0.75, 1), (7.3, 0.732, 0)])
+        drawn = run_script("plot_econe_contact.py", d)
+        figure = os.path.join(d, "econe_contact.png")
+        if "needs matplotlib" in drawn.stderr:
+            print("matplotlib missing: the figure itself is not checked")
+        else:
+            check(drawn.returncode == 0, f"the figure is drawn: {drawn.stderr!r}")
+            check(os.path.isfile(figure) and os.path.getsize(figure) > 10000,
+                  "econe_contact.png is written")
+            check(not os.path.exists(os.path.join(d, ".econe_contact.png.tmp")),
+                  "no temporary is left")
+    check.finish()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,135 @@
+#include "studies/econe_contact_study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/studies/scratch_directory.hpp"
+#include "tests/support/error_message.hpp"
+
+namespace growshell {
+namespace {
+
+using EconeContact = testing::ScratchDirectoryTest;
+using test_support::error_of;
+
+EconeContactResults sample_results() {
+  EconeContactResults r;
+  r.thickness = 0.04;
+  r.mesh.family = "rings";
+  r.mesh.size_slope = 0.1;
+  r.mesh.elements = 3600;
+  r.mesh.unknowns = 5691;
+  r.contact_distance = 0.04;
+  r.exclusion_radius = 0.32;
+  r.penalty_stiffness = 3329.0;
+  r.phi_branch = 0.0171;
+  r.phi_max = 4.066;
+  r.eb_hat_max = 4.27;
+  r.phi_contact_start = 6.55;
+  r.phi_first_contact = 6.57;
+  r.phi_crit_stability = 7.03;
+  r.crossings = {{5.6, 1e-5, false}, {7.1, 2e-5, true}};
+  r.phi_crit_energy = 6.9;
+  r.phi_crit_energy_criterion = "stabilised_below";
+  r.max_s4_defect_symmetric = 2e-16;
+  r.skewed_found = true;
+  r.skewed_message = "relaxed";
+  r.skew_search_at = 7.2;
+  r.skewed_energy_below_symmetric = 4e-3;
+  r.skewed_lowest_phi = 6.5;
+  r.skewed_highest_phi = std::numeric_limits<double>::quiet_NaN();  // written as null
+  r.completed = true;
+  r.end = "completed";
+  return r;
+}
+
+TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
+  const auto j = nlohmann::ordered_json::parse(econe_contact_results_json(sample_results()));
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  const std::vector<std::string> expected = {
+      "study", "thickness", "mesh", "contact_distance", "exclusion_radius", "penalty_stiffness",
+      "phi_branch", "phi_max", "eb_hat_max", "phi_contact_start", "phi_kiss",
+      "phi_kiss_criterion", "phi_first_contact", "phi_crit_stability", "phi_crit_energy",
+      "phi_crit_energy_criterion", "crossings", "max_s4_defect_symmetric", "skewed", "ipopt",
+      "completed", "end", "cone_csv", "symmetric_csv", "skewed_csv", "events", "wall_seconds"};
+  EXPECT_EQ(keys, expected);
+  EXPECT_EQ(j["study"], "econe_contact");
+  // phi_kiss is the first contact on the symmetric branch, and says so.
+  EXPECT_EQ(j["phi_kiss"].get<double>(), 6.57);
+  EXPECT_EQ(j["phi_kiss_criterion"], "first_contact");
+  EXPECT_EQ(j["phi_crit_energy"].get<double>(), 6.9);
+  EXPECT_EQ(j["phi_crit_stability"].get<double>(), 7.03);
+  EXPECT_EQ(j["phi_crit_energy_criterion"], "stabilised_below");
+  ASSERT_EQ(j["crossings"].size(), 2u);
+  EXPECT_EQ(j["crossings"][0]["phi_e"].get<double>(), 5.6);
+  EXPECT_FALSE(j["crossings"][0]["skewed_stable"].get<bool>());
+  EXPECT_TRUE(j["crossings"][1]["skewed_stable"].get<bool>());
+  EXPECT_TRUE(j["skewed"]["highest_phi"].is_null());
+  EXPECT_EQ(j["skewed"]["lowest_phi"].get<double>(), 6.5);
+  EXPECT_TRUE(j["ipopt"].is_null());  // not checked
+  EXPECT_EQ(j["symmetric_csv"], "symmetric/branch.csv");
+  EXPECT_EQ(j["mesh"]["unknowns"].get<long long>(), 5691);
+
+  EconeContactResults checked = sample_results();
+  checked.ipopt = EconeIpoptCheck{true, "Optimal Solution Found", 1e-7, 0.02, 1.01};
+  const auto k = nlohmann::json::parse(econe_contact_results_json(checked));
+  EXPECT_TRUE(k["ipopt"]["converged"].get<bool>());
+  EXPECT_DOUBLE_EQ(k["ipopt"]["min_distance_over_h"].get<double>(), 1.01);
+  // Without phi_e^crit by energy, its criterion is null too.
+  EconeContactResults none = sample_results();
+  none.phi_crit_energy.reset();
+  const auto n = nlohmann::json::parse(econe_contact_results_json(none));
+  EXPECT_TRUE(n["phi_crit_energy"].is_null());
+  EXPECT_TRUE(n["phi_crit_energy_criterion"].is_null());
+}
+
+TEST(EconeContactConeScene, IsTheContactFreeConeBranchStudyInTheConeFolder) {
+  Scene scene = default_scene();
+  scene.study.kind = StudyKind::EconeContact;
+  scene.study.through_contact = true;
+  scene.output.directory = "out/econe";
+  const Scene cone = econe_contact_cone_scene(scene);
+  EXPECT_EQ(cone.study.kind, StudyKind::ConeBranch);
+  EXPECT_FALSE(cone.study.through_contact);  // stage 1 stops at first contact
+  EXPECT_EQ(std::filesystem::path(cone.output.directory), std::filesystem::path("out/econe/cone"));
+  EXPECT_EQ(thickness_at_radius(cone.thickness, 0.0, 1.0), thickness_at_radius(scene.thickness, 0.0, 1.0));
+}
+
+TEST_F(EconeContact, RefusesBadInputBeforeWritingAnything) {
+  Scene scene = default_scene();
+  scene.study.kind = StudyKind::EconeContact;
+  scene.output.directory = path("run");
+  Scene three = scene;
+  three.continuation.mode = 3;
+  EXPECT_NE(error_of([&] { run_econe_contact_study(three, ExistingOutput::Refuse); })
+                .find("continuation.mode = 3"),
+            std::string::npos);
+  Scene cone = scene;
+  cone.study.kind = StudyKind::ConeBranch;
+  EXPECT_NE(error_of([&] { run_econe_contact_study(cone, ExistingOutput::Refuse); })
+                .find("not econe_contact"),
+            std::string::npos);
+  Scene step = scene;
+  step.study.contact_max_step = 0.0;
+  EXPECT_NE(error_of([&] { run_econe_contact_study(step, ExistingOutput::Refuse); })
+                .find("study.contact_max_step"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(path("run")));
+
+  // A used directory is refused under Refuse, and one without the cone's record under Resume.
+  std::filesystem::create_directories(path("run"));
+  write(path("run/notes.txt"), "mine");
+  EXPECT_NE(error_of([&] { run_econe_contact_study(scene, ExistingOutput::Refuse); }), "");
+  EXPECT_NE(error_of([&] { run_econe_contact_study(scene, ExistingOutput::Resume); }), "");
+  EXPECT_EQ(listing("run"), std::vector<std::string>{"notes.txt"});
+}
+
+}  // namespace
+}  // namespace growshell
