@@ -29,6 +29,20 @@ std::optional<double> first_in(const std::vector<double>& candidates, double lo,
   return best;
 }
 
+/// The accurate crossing nearest the linear estimate `linear` of the sign change in [lo, hi],
+/// if one lies within one interval width of that interval: the linear interpolation of the
+/// first branch's energy can place the sign change an interval away from the true crossing.
+std::optional<double> crossing_near(const std::vector<double>& crossings, double linear,
+                                    double lo, double hi) {
+  const double width = hi - lo;
+  std::optional<double> best;
+  for (double c : crossings)
+    if (c >= lo - width && c <= hi + width &&
+        (!best || std::abs(c - linear) < std::abs(*best - linear)))
+      best = c;
+  return best;
+}
+
 }  // namespace
 
 std::optional<GroundStateExchange> ground_state_exchange(
@@ -50,14 +64,16 @@ std::optional<GroundStateExchange> ground_state_exchange(
         // A crossing within the interval: the accurate one if given, else linear.
         const double linear =
             previous_phi + *previous_gap / (*previous_gap - gap) * (s.phi_e - previous_phi);
-        return GroundStateExchange{first_in(crossings, previous_phi, s.phi_e).value_or(linear),
-                                   "energy_crossing"};
+        return GroundStateExchange{
+            crossing_near(crossings, linear, previous_phi, s.phi_e).value_or(linear),
+            "energy_crossing"};
       }
       if (*previous_gap >= 0.0) {
         // Both happen within one interval: the later of the crossing and the stability change.
         const double linear =
             previous_phi + *previous_gap / (*previous_gap - gap) * (s.phi_e - previous_phi);
-        const double crossing = first_in(crossings, previous_phi, s.phi_e).value_or(linear);
+        const double crossing =
+            crossing_near(crossings, linear, previous_phi, s.phi_e).value_or(linear);
         const double turn = first_in(second_special, previous_phi, s.phi_e).value_or(s.phi_e);
         return crossing >= turn ? GroundStateExchange{crossing, "energy_crossing"}
                                 : GroundStateExchange{turn, "stabilised_below"};

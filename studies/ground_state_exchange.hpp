@@ -32,9 +32,10 @@ struct GroundStateExchange {
 
 /// The exchange between `first` (any order of phi_e; its energy interpolated linearly between
 /// the samples bracketing a phi_e) and `second` (any order; sorted by phi_e here). `crossings`
-/// are the accurate crossing parameters of the two branches (e.g. energy_crossings'), and
-/// `second_special` the phi_e of the second branch's special points; each refines the linear
-/// estimate in the sample interval that holds it. Samples of `second` outside the range of
+/// are the accurate crossing parameters of the two branches (e.g. energy_crossings'): the one
+/// nearest the linear estimate, within one sample interval of the interval where the sign
+/// changes, replaces it. `second_special` are the phi_e of the second branch's special points;
+/// one in the interval where the second branch turns stable gives where it does. Samples of `second` outside the range of
 /// `first` are not compared. None if no stable sample of `second` lies below `first`.
 std::optional<GroundStateExchange> ground_state_exchange(
     std::vector<BranchStateSample> first, std::vector<BranchStateSample> second,

@@ -34,6 +34,15 @@ TEST(GroundStateExchange, IsTheCrossingWhereTheSecondBranchIsStableThere) {
   ASSERT_TRUE(x.has_value());
   EXPECT_EQ(x->criterion, "energy_crossing");
   EXPECT_DOUBLE_EQ(x->phi_e, 6.2501);
+  // One interval away (the linear interpolation of a coarsely sampled first branch can move
+  // the sign change by an interval): still the accurate one.
+  const auto near = ground_state_exchange(flat_branch(), line_branch(6.25, 0.0), {6.17}, {});
+  ASSERT_TRUE(near.has_value());
+  EXPECT_DOUBLE_EQ(near->phi_e, 6.17);
+  // Two intervals away it is another crossing: the linear estimate stands.
+  const auto far = ground_state_exchange(flat_branch(), line_branch(6.25, 0.0), {6.02}, {});
+  ASSERT_TRUE(far.has_value());
+  EXPECT_NEAR(far->phi_e, 6.25, 1e-12);
   // Without it, the linear estimate, exact for these lines.
   const auto linear = ground_state_exchange(flat_branch(), line_branch(6.25, 0.0), {}, {});
   ASSERT_TRUE(linear.has_value());
