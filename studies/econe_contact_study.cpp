@@ -361,13 +361,22 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   if (!t.symmetric.reached_bound) end = "symmetric branch: " + t.symmetric.message;
   if (!t.skewed_found)
     end += std::string(end.empty() ? "" : "; ") + "no skewed cone: " + t.skewed_message;
+  // The downward trace is there to find phi_e^crit by energy: one that ends early after it
+  // passed below an exchange it located (not merely its own lowest sample) has done its job,
+  // and the end says where it stopped.
+  std::string note;
+  const bool exchange_located =
+      r.phi_crit_energy && r.phi_crit_energy_criterion != "lowest_sample" &&
+      r.skewed_lowest_phi && *r.skewed_lowest_phi < *r.phi_crit_energy;
   for (const auto& [name, trace] : {std::pair{"downwards", &t.skewed_down},
-                                    std::pair{"upwards", &t.skewed_up}})
-    if (t.skewed_found && trace->steps > 0 && !trace->reached_bound)
-      end += std::string(end.empty() ? "" : "; ") + "skewed branch " + name + ": " +
-             trace->message;
+                                    std::pair{"upwards", &t.skewed_up}}) {
+    if (!t.skewed_found || trace->steps == 0 || trace->reached_bound) continue;
+    std::string& into = std::string(name) == "downwards" && exchange_located ? note : end;
+    into += std::string(into.empty() ? "" : "; ") + "skewed branch " + name + ": " +
+            trace->message;
+  }
   r.completed = end.empty();
-  r.end = r.completed ? "completed" : end;
+  r.end = !r.completed ? end : note.empty() ? "completed" : "completed (" + note + ")";
 }
 
 EconeContactResults EconeContactRun::run() {

@@ -117,7 +117,8 @@ struct EconeContactResults {
   std::optional<double> skewed_lowest_phi, skewed_highest_phi;
   std::optional<EconeIpoptCheck> ipopt;
   /// Whether every stage ran to its end (the symmetric branch to phi_max, the skewed cone
-  /// found and both its traces ended at a bound), and why not.
+  /// found and both its traces ended at a bound, or the downward one below the exchange it
+  /// located), and why not ("completed (...)" says where a downward trace stopped early).
   bool completed = false;
   std::string end;
   double wall_seconds = 0.0;
