@@ -368,9 +368,13 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   const bool exchange_located =
       r.phi_crit_energy && r.phi_crit_energy_criterion != "lowest_sample" &&
       r.skewed_lowest_phi && *r.skewed_lowest_phi < *r.phi_crit_energy;
+  if (t.skewed_found && skewed_->rows() == 0)
+    end += std::string(end.empty() ? "" : "; ") + "the skewed state found did not start a branch";
   for (const auto& [name, trace] : {std::pair{"downwards", &t.skewed_down},
                                     std::pair{"upwards", &t.skewed_up}}) {
-    if (!t.skewed_found || trace->steps == 0 || trace->reached_bound) continue;
+    // A trace that was run (it has a message) and did not end at a bound; one that ended at
+    // its start (no step) counts too.
+    if (!t.skewed_found || trace->message.empty() || trace->reached_bound) continue;
     std::string& into = std::string(name) == "downwards" && exchange_located ? note : end;
     into += std::string(into.empty() ? "" : "; ") + "skewed branch " + name + ": " +
             trace->message;
