@@ -131,5 +131,24 @@ TEST_F(EconeContact, RefusesBadInputBeforeWritingAnything) {
   EXPECT_EQ(listing("run"), std::vector<std::string>{"notes.txt"});
 }
 
+TEST_F(EconeContact, ResumeRefusesASceneThatDoesNotFitTheRecordedCone) {
+  // A recorded cone at h = 0.04; resuming with h = 0.03 would continue it with another sheet.
+  Scene recorded = default_scene();
+  recorded.study.kind = StudyKind::EconeContact;
+  recorded.thickness = ConstantThickness{0.04};
+  recorded.output.directory = path("run");
+  std::filesystem::create_directories(path("run/cone"));
+  write(path("run/cone/scene.json"), scene_to_json(econe_contact_cone_scene(recorded)));
+  write(path("run/cone/record.json"), "{}");
+  Scene thinner = recorded;
+  thinner.thickness = ConstantThickness{0.03};
+  const std::string message =
+      error_of([&] { run_econe_contact_study(thinner, ExistingOutput::Resume); });
+  EXPECT_NE(message.find("thickness"), std::string::npos) << message;
+  // Nothing was written: no scene.json, no branch records beside the cone.
+  EXPECT_EQ(listing("run"), std::vector<std::string>{"cone"});
+  EXPECT_EQ(listing("run/cone"), (std::vector<std::string>{"record.json", "scene.json"}));
+}
+
 }  // namespace
 }  // namespace growshell
