@@ -33,11 +33,15 @@ namespace {
 namespace fs = std::filesystem;
 
 /// The columns of DIR/symmetric/branch.csv and DIR/skewed/branch.csv.
-const std::vector<std::string> kColumns = {
-    "phi_e",         "E_stretch",   "E_bend",       "E_penalty",  "Eb_hat",
-    "area",          "min_distance", "active_pairs", "contact_force", "gamma",
-    "n_negative",    "dE_dphi",     "arclength",    "corrector_iterations", "s4_defect",
-    "chord_up",      "chord_down"};
+const std::vector<std::string> kColumns = {"phi_e",         "E_stretch",
+                                           "E_bend",        "E_penalty",
+                                           "Eb_hat",        "area",
+                                           "min_distance",  "active_pairs",
+                                           "contact_force", "gamma",
+                                           "n_negative",    "dE_dphi",
+                                           "arclength",     "corrector_iterations",
+                                           "s4_defect",     "chord_up",
+                                           "chord_down"};
 
 constexpr const char* kConeDir = "cone";
 
@@ -141,9 +145,9 @@ void EconeContactRun::set_up_contact() {
   c.contact_distance = scene_.physics.contact_distance.value_or(h_);
   c.exclusion_radius = resolved_exclusion_radius(scene_);
   c.candidate_margin = h_;
-  c.stiffness = st.penalty_stiffness_factor *
-                contact_stiffness_scale(scene_.material.youngs_modulus, h_,
-                                        proxy_mean_edge_length(*proxy_));
+  c.stiffness =
+      st.penalty_stiffness_factor *
+      contact_stiffness_scale(scene_.material.youngs_modulus, h_, proxy_mean_edge_length(*proxy_));
   c.violation_tolerance = 0.25 * h_;
   // Rim vertices pinned on the reference come round next to the pinning axis as the cone grows
   // (ContactBranchOptions::repin_above_condition).
@@ -159,8 +163,7 @@ void EconeContactRun::set_up_contact() {
   if (st.index_excludes_pattern_turn) {
     const ShellModel& model = *model_;
     const std::vector<Eigen::Index> pins = pinned_;
-    c.stability_index = [&model, pins](const ParametrizedObjective& energy,
-                                       const BranchSample& s) {
+    c.stability_index = [&model, pins](const ParametrizedObjective& energy, const BranchSample& s) {
       TurnFreeStabilityIndex index(energy, model, pins);
       return index.at(s.x, s.parameter);
     };
@@ -178,8 +181,7 @@ void EconeContactRun::set_up_contact() {
   options_.skewed_start = SkewedStart::Top;
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
-  options_.skew_search_at =
-      st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
+  options_.skew_search_at = st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
   // A relaxed state that keeps S4 is the symmetric cone in another frame (turned about the
   // axis against the mesh), not a skewed cone.
   {
@@ -202,8 +204,7 @@ void EconeContactRun::set_up_contact() {
   }
   options_.relaxation.gradient_tolerance = c.arclength.gradient_tolerance;
   // The decrement test stops Newton's crawl along the nearly free turn of the fold pattern.
-  options_.relaxation.decrement_tolerance =
-      1e-6 * scene_.material.youngs_modulus * h_ * h_ * h_;
+  options_.relaxation.decrement_tolerance = 1e-6 * scene_.material.youngs_modulus * h_ * h_ * h_;
   options_.relaxation.max_iterations = 400;
   if (st.ipopt_check)
     options_.verify_with_ipopt =
@@ -244,9 +245,8 @@ void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s)
                                      model_->dimension(), options_.contact.gap);
     // Zones: pairs within 0.1 R of each other whose normals differ by less than 30 degrees, so
     // that the upper and lower contact of the cone, which meet at the apex, stay apart.
-    gamma = contact_plane_angle(contact_zones(gaps, s.sample.x, s.forces,
-                                              0.1 * scene_.geometry.radius, 1e-3,
-                                              std::numbers::pi / 6));
+    gamma = contact_plane_angle(contact_zones(
+        gaps, s.sample.x, s.forces, 0.1 * scene_.geometry.radius, 1e-3, std::numbers::pi / 6));
     force = s.forces.sum();
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -270,12 +270,11 @@ void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s)
                 c.active_pairs, defect, c.sample.corrector_iterations);
   say(line);
   BranchRecord& r = record(which);
-  r.append_row({c.sample.parameter, c.stretching_energy, c.bending_energy, c.penalty_energy,
-                c.normalized_bending, c.current_area, c.min_distance,
-                static_cast<double>(c.active_pairs), force, gamma,
-                static_cast<double>(c.sample.negative_eigenvalues), c.energy_slope,
-                c.sample.arclength, static_cast<double>(c.sample.corrector_iterations), defect, up,
-                down});
+  r.append_row(
+      {c.sample.parameter, c.stretching_energy, c.bending_energy, c.penalty_energy,
+       c.normalized_bending, c.current_area, c.min_distance, static_cast<double>(c.active_pairs),
+       force, gamma, static_cast<double>(c.sample.negative_eigenvalues), c.energy_slope,
+       c.sample.arclength, static_cast<double>(c.sample.corrector_iterations), defect, up, down});
   r.save_state(c.sample, fingerprint_);
   r.commit();
 }
@@ -293,9 +292,9 @@ void EconeContactRun::on_special(EconeBranch which, const SpecialPoint& sp) {
                                     {{"multiplicity", static_cast<double>(sp.multiplicity)},
                                      {"negative_before", static_cast<double>(sp.negative_before)},
                                      {"negative_after", static_cast<double>(sp.negative_after)}}});
-  say("# " + std::string(to_string(which)) + " branch: " + to_string(sp.kind) + " at phi_e = " +
-      fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) + " -> " +
-      std::to_string(sp.negative_after) + ")");
+  say("# " + std::string(to_string(which)) + " branch: " + to_string(sp.kind) +
+      " at phi_e = " + fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) +
+      " -> " + std::to_string(sp.negative_after) + ")");
   record(which).commit();
 }
 
@@ -365,19 +364,18 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // passed below an exchange it located (not merely its own lowest sample) has done its job,
   // and the end says where it stopped.
   std::string note;
-  const bool exchange_located =
-      r.phi_crit_energy && r.phi_crit_energy_criterion != "lowest_sample" &&
-      r.skewed_lowest_phi && *r.skewed_lowest_phi < *r.phi_crit_energy;
+  const bool exchange_located = r.phi_crit_energy &&
+                                r.phi_crit_energy_criterion != "lowest_sample" &&
+                                r.skewed_lowest_phi && *r.skewed_lowest_phi < *r.phi_crit_energy;
   if (t.skewed_found && skewed_->rows() == 0)
     end += std::string(end.empty() ? "" : "; ") + "the skewed state found did not start a branch";
-  for (const auto& [name, trace] : {std::pair{"downwards", &t.skewed_down},
-                                    std::pair{"upwards", &t.skewed_up}}) {
+  for (const auto& [name, trace] :
+       {std::pair{"downwards", &t.skewed_down}, std::pair{"upwards", &t.skewed_up}}) {
     // A trace that was run (it has a message) and did not end at a bound; one that ended at
     // its start (no step) counts too.
     if (!t.skewed_found || trace->message.empty() || trace->reached_bound) continue;
     std::string& into = std::string(name) == "downwards" && exchange_located ? note : end;
-    into += std::string(into.empty() ? "" : "; ") + "skewed branch " + name + ": " +
-            trace->message;
+    into += std::string(into.empty() ? "" : "; ") + "skewed branch " + name + ": " + trace->message;
   }
   r.completed = end.empty();
   r.end = !r.completed ? end : note.empty() ? "completed" : "completed (" + note + ")";
@@ -391,16 +389,15 @@ EconeContactResults EconeContactRun::run() {
   trace_cone();
   fs::remove(fs::path(dir_) / "results.json");  // stale once the branches are traced again
   set_up_contact();
-  symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns,
-                                              BranchRecord::Start::Fresh);
-  skewed_ =
-      std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
-  say("# stage 2-4: the symmetric branch with contact from phi_e = " +
-      fixed(start_.parameter, 6) + ", the skewed cone, the crossing");
+  symmetric_ =
+      std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
+  skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
+  say("# stage 2-4: the symmetric branch with contact from phi_e = " + fixed(start_.parameter, 6) +
+      ", the skewed cone, the crossing");
   char header[256];
-  std::snprintf(header, sizeof header, "%-9s %9s %12s %12s %10s %8s %3s %7s %5s %9s %3s",
-                "branch", "phi_e", "E_stretch", "E_bend", "E_penalty", "Eb_hat", "neg", "gamma",
-                "n_c", "s4", "it");
+  std::snprintf(header, sizeof header, "%-9s %9s %12s %12s %10s %8s %3s %7s %5s %9s %3s", "branch",
+                "phi_e", "E_stretch", "E_bend", "E_penalty", "Eb_hat", "neg", "gamma", "n_c", "s4",
+                "it");
   say(header);
   EconeBranchCallbacks callbacks;
   callbacks.on_sample = [this](EconeBranch which, const ContactBranchSample& s) {
@@ -418,9 +415,8 @@ EconeContactResults EconeContactRun::run() {
     say("# symmetric branch: event " + e.kind + " at phi_e = " + fixed(e.parameter, 7));
   };
   callbacks.on_note = [this](const std::string& text) { say("# " + text); };
-  const EconeBranchResult traced =
-      trace_econe_branches(*model_, *proxy_, start_.x, start_.parameter, pinned_, options_,
-                           callbacks);
+  const EconeBranchResult traced = trace_econe_branches(
+      *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
   summarize(traced);
 
   EconeContactResults& r = results_;
@@ -429,7 +425,8 @@ EconeContactResults EconeContactRun::run() {
   if (graded_by_size(scene_.mesh.family)) r.mesh.size_slope = scene_.mesh.size_slope;
   r.mesh.elements = static_cast<long long>(model_->num_elements());
   r.mesh.unknowns = static_cast<long long>(model_->dimension());
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  r.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   write_file_atomically(dir_ + "/results.json", econe_contact_results_json(r));
   const auto show = [](const std::optional<double>& v) {
     return v ? fixed(*v, 6) : std::string("none");

@@ -3,7 +3,8 @@
 /// The econe_contact study (the paper's Fig. 4 at one thickness): the two-fold cone through
 /// self-contact, the skewed cone, and the critical excess angle phi_e^crit both ways.
 ///
-///  1. DIR/cone: the cone_branch study of the scene without contact (studies/cone_branch_study.hpp),
+///  1. DIR/cone: the cone_branch study of the scene without contact
+///  (studies/cone_branch_study.hpp),
 ///     from the flat sheet up to its first contact: a gap equal to the contact distance between
 ///     parts of the sheet farther apart in the reference than physics.contact_exclusion_radius.
 ///  2. DIR/symmetric: from the cone's last state, the symmetric branch with the contact penalty

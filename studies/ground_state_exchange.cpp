@@ -32,8 +32,8 @@ std::optional<double> first_in(const std::vector<double>& candidates, double lo,
 /// The accurate crossing nearest the linear estimate `linear` of the sign change in [lo, hi],
 /// if one lies within one interval width of that interval: the linear interpolation of the
 /// first branch's energy can place the sign change an interval away from the true crossing.
-std::optional<double> crossing_near(const std::vector<double>& crossings, double linear,
-                                    double lo, double hi) {
+std::optional<double> crossing_near(const std::vector<double>& crossings, double linear, double lo,
+                                    double hi) {
   const double width = hi - lo;
   std::optional<double> best;
   for (double c : crossings)

@@ -35,10 +35,12 @@ struct GroundStateExchange {
 /// are the accurate crossing parameters of the two branches (e.g. energy_crossings'): the one
 /// nearest the linear estimate, within one sample interval of the interval where the sign
 /// changes, replaces it. `second_special` are the phi_e of the second branch's special points;
-/// one in the interval where the second branch turns stable gives where it does. Samples of `second` outside the range of
-/// `first` are not compared. None if no stable sample of `second` lies below `first`.
-std::optional<GroundStateExchange> ground_state_exchange(
-    std::vector<BranchStateSample> first, std::vector<BranchStateSample> second,
-    const std::vector<double>& crossings, const std::vector<double>& second_special);
+/// one in the interval where the second branch turns stable gives where it does. Samples of
+/// `second` outside the range of `first` are not compared. None if no stable sample of `second`
+/// lies below `first`.
+std::optional<GroundStateExchange> ground_state_exchange(std::vector<BranchStateSample> first,
+                                                         std::vector<BranchStateSample> second,
+                                                         const std::vector<double>& crossings,
+                                                         const std::vector<double>& second_special);
 
 }  // namespace growshell

@@ -53,12 +53,33 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   const auto j = nlohmann::ordered_json::parse(econe_contact_results_json(sample_results()));
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
-  const std::vector<std::string> expected = {
-      "study", "thickness", "mesh", "contact_distance", "exclusion_radius", "penalty_stiffness",
-      "phi_branch", "phi_max", "eb_hat_max", "phi_contact_start", "phi_kiss",
-      "phi_kiss_criterion", "phi_first_contact", "phi_crit_stability", "phi_crit_energy",
-      "phi_crit_energy_criterion", "crossings", "max_s4_defect_symmetric", "skewed", "ipopt",
-      "completed", "end", "cone_csv", "symmetric_csv", "skewed_csv", "events", "wall_seconds"};
+  const std::vector<std::string> expected = {"study",
+                                             "thickness",
+                                             "mesh",
+                                             "contact_distance",
+                                             "exclusion_radius",
+                                             "penalty_stiffness",
+                                             "phi_branch",
+                                             "phi_max",
+                                             "eb_hat_max",
+                                             "phi_contact_start",
+                                             "phi_kiss",
+                                             "phi_kiss_criterion",
+                                             "phi_first_contact",
+                                             "phi_crit_stability",
+                                             "phi_crit_energy",
+                                             "phi_crit_energy_criterion",
+                                             "crossings",
+                                             "max_s4_defect_symmetric",
+                                             "skewed",
+                                             "ipopt",
+                                             "completed",
+                                             "end",
+                                             "cone_csv",
+                                             "symmetric_csv",
+                                             "skewed_csv",
+                                             "events",
+                                             "wall_seconds"};
   EXPECT_EQ(keys, expected);
   EXPECT_EQ(j["study"], "econe_contact");
   // phi_kiss is the first contact on the symmetric branch, and says so.
@@ -99,7 +120,8 @@ TEST(EconeContactConeScene, IsTheContactFreeConeBranchStudyInTheConeFolder) {
   EXPECT_EQ(cone.study.kind, StudyKind::ConeBranch);
   EXPECT_FALSE(cone.study.through_contact);  // stage 1 stops at first contact
   EXPECT_EQ(std::filesystem::path(cone.output.directory), std::filesystem::path("out/econe/cone"));
-  EXPECT_EQ(thickness_at_radius(cone.thickness, 0.0, 1.0), thickness_at_radius(scene.thickness, 0.0, 1.0));
+  EXPECT_EQ(thickness_at_radius(cone.thickness, 0.0, 1.0),
+            thickness_at_radius(scene.thickness, 0.0, 1.0));
 }
 
 TEST_F(EconeContact, RefusesBadInputBeforeWritingAnything) {
@@ -108,18 +130,21 @@ TEST_F(EconeContact, RefusesBadInputBeforeWritingAnything) {
   scene.output.directory = path("run");
   Scene three = scene;
   three.continuation.mode = 3;
-  EXPECT_NE(error_of([&] { run_econe_contact_study(three, ExistingOutput::Refuse); })
-                .find("continuation.mode = 3"),
+  EXPECT_NE(error_of([&] {
+              run_econe_contact_study(three, ExistingOutput::Refuse);
+            }).find("continuation.mode = 3"),
             std::string::npos);
   Scene cone = scene;
   cone.study.kind = StudyKind::ConeBranch;
-  EXPECT_NE(error_of([&] { run_econe_contact_study(cone, ExistingOutput::Refuse); })
-                .find("not econe_contact"),
+  EXPECT_NE(error_of([&] {
+              run_econe_contact_study(cone, ExistingOutput::Refuse);
+            }).find("not econe_contact"),
             std::string::npos);
   Scene step = scene;
   step.study.contact_max_step = 0.0;
-  EXPECT_NE(error_of([&] { run_econe_contact_study(step, ExistingOutput::Refuse); })
-                .find("study.contact_max_step"),
+  EXPECT_NE(error_of([&] {
+              run_econe_contact_study(step, ExistingOutput::Refuse);
+            }).find("study.contact_max_step"),
             std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(path("run")));
 
