@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -305,27 +306,52 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // there; the penalty's own event (proxy pairs, symmetric/events.json) only if it did not.
   if (!r.phi_first_contact && t.first_contact) r.phi_first_contact = t.first_contact->parameter;
   if (t.stability_loss) r.phi_crit_stability = t.stability_loss->parameter;
+  // The skewed trace can run onto the symmetric cone turned against the mesh (at a fold of the
+  // skewed branch, or where pairs change): only its samples that break S4 are the skewed cone.
+  // A defect above half the radius is a measure that failed (fold directions not found on a
+  // turned state), not a cone.
+  const double threshold = scene_.study.symmetry_threshold;
+  const auto breaks_s4 = [threshold](double defect) {
+    return defect > threshold && defect < 0.5;
+  };
+  std::vector<double> skewed_phi;  // of the samples that break S4
+  for (std::size_t row = 0; row < skewed_->rows(); ++row)
+    if (breaks_s4(skewed_->value(row, "s4_defect")))
+      skewed_phi.push_back(skewed_->value(row, "phi_e"));
+  // A crossing counts if samples that break S4 lie within 0.05 of it on both sides.
+  const auto on_skewed_cone = [&skewed_phi](double phi) {
+    bool below = false, above = false;
+    for (double p : skewed_phi) {
+      below = below || (p <= phi && p >= phi - 0.05);
+      above = above || (p >= phi && p <= phi + 0.05);
+    }
+    return below && above;
+  };
   std::vector<double> crossings;
   for (std::size_t i = 0; i < t.crossings.size(); ++i) {
+    const double phi = t.crossings[i].parameter;
+    if (!on_skewed_cone(phi)) continue;
     const bool stable = i < t.crossing_skewed_stable.size() && t.crossing_skewed_stable[i];
-    r.crossings.push_back({t.crossings[i].parameter, t.crossings[i].error_estimate, stable});
-    crossings.push_back(t.crossings[i].parameter);
+    r.crossings.push_back({phi, t.crossings[i].error_estimate, stable});
+    crossings.push_back(phi);
   }
   // The exchange of ground states: the symmetric branch (the cone without contact ahead of the
-  // trace with contact; only the skewed branch's stability matters), the skewed branch, and
-  // the skewed branch's special points.
+  // trace with contact; only the skewed branch's stability matters), the skewed cone's samples,
+  // and the skewed branch's special points.
   std::vector<BranchStateSample> symmetric, skewed;
-  const auto add_rows = [](const BranchRecord& record, std::vector<BranchStateSample>& out) {
+  const auto add_rows = [](const BranchRecord& record, std::vector<BranchStateSample>& out,
+                           const std::function<bool(double)>& keep) {
     for (std::size_t row = 0; row < record.rows(); ++row)
-      out.push_back({record.value(row, "phi_e"),
-                     record.value(row, "E_stretch") + record.value(row, "E_bend") +
-                         record.value(row, "E_penalty"),
-                     static_cast<int>(record.value(row, "n_negative"))});
+      if (keep(record.value(row, "s4_defect")))
+        out.push_back({record.value(row, "phi_e"),
+                       record.value(row, "E_stretch") + record.value(row, "E_bend") +
+                           record.value(row, "E_penalty"),
+                       static_cast<int>(record.value(row, "n_negative"))});
   };
   for (const BranchEnergySample& c : options_.symmetric_before)
     symmetric.push_back({c.parameter, c.energy, 0});
-  add_rows(*symmetric_, symmetric);
-  add_rows(*skewed_, skewed);
+  add_rows(*symmetric_, symmetric, [](double) { return true; });
+  add_rows(*skewed_, skewed, breaks_s4);
   std::vector<double> special;
   for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
   if (const auto exchange = ground_state_exchange(symmetric, skewed, crossings, special)) {
@@ -340,8 +366,7 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
       r.skewed_energy_below_symmetric =
           (t.symmetric_top_energy - t.skewed_relaxed_energy) / t.symmetric_top_energy;
   }
-  for (std::size_t row = 0; row < skewed_->rows(); ++row) {
-    const double phi = skewed_->value(row, "phi_e");
+  for (double phi : skewed_phi) {
     r.skewed_lowest_phi = std::min(r.skewed_lowest_phi.value_or(phi), phi);
     r.skewed_highest_phi = std::max(r.skewed_highest_phi.value_or(phi), phi);
   }

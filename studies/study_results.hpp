@@ -104,7 +104,8 @@ struct EconeContactResults {
   /// "stabilised_below" or "lowest_sample").
   std::optional<double> phi_crit_energy;
   std::string phi_crit_energy_criterion;
-  /// Every energy crossing of the two branches, by phi_e.
+  /// Every energy crossing of the two branches, by phi_e, where the skewed trace is on the
+  /// skewed cone (samples that break S4 within 0.05 on both sides).
   std::vector<EconeCrossing> crossings;
   /// The largest S4 defect of the symmetric branch's samples with contact.
   std::optional<double> max_s4_defect_symmetric;
@@ -113,7 +114,8 @@ struct EconeContactResults {
   std::optional<double> skew_search_at;  ///< phi_e of the relaxed symmetric state
   /// (E_symmetric - E_skewed) / E_symmetric at skew_search_at (E = E_s + E_b + P).
   std::optional<double> skewed_energy_below_symmetric;
-  /// The lowest and highest phi_e of the skewed branch's samples.
+  /// The lowest and highest phi_e of the skewed branch's samples that break S4 (S4 defect
+  /// above study.symmetry_threshold and below 0.5, a larger one being a failed measure).
   std::optional<double> skewed_lowest_phi, skewed_highest_phi;
   std::optional<EconeIpoptCheck> ipopt;
   /// Whether every stage ran to its end (the symmetric branch to phi_max, the skewed cone
