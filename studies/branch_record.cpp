@@ -121,6 +121,24 @@ void remove_temporaries(const std::string& directory) {
 
 }  // namespace
 
+std::string special_point_event_fields(const SpecialPoint& sp) {
+  std::ostringstream j;
+  j << std::setprecision(10) << "\"kind\": \"" << to_string(sp.kind)
+    << "\", \"phi_e\": " << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
+    << ", \"negative_before\": " << sp.negative_before
+    << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width;
+  return j.str();
+}
+
+RecordedEvent special_point_summary(const SpecialPoint& sp, const std::string& branch) {
+  return {to_string(sp.kind),
+          sp.parameter,
+          branch,
+          {{"multiplicity", static_cast<double>(sp.multiplicity)},
+           {"negative_before", static_cast<double>(sp.negative_before)},
+           {"negative_after", static_cast<double>(sp.negative_after)}}};
+}
+
 std::optional<double> RecordedEvent::value(const std::string& name) const {
   for (const auto& [n, v] : values)
     if (n == name) return v;

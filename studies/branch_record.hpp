@@ -39,6 +39,12 @@ struct RecordedEvent {
   std::optional<double> value(const std::string& name) const;
 };
 
+/// A special point as a study records it: the fields of its events.json object (kind, phi_e,
+/// multiplicity, negative_before, negative_after, bracket), without the braces so that a study
+/// can add its own, and its summary for record.json on `branch`.
+std::string special_point_event_fields(const SpecialPoint& point);
+RecordedEvent special_point_summary(const SpecialPoint& point, const std::string& branch);
+
 /// A branch record in a directory (see the file comment).
 class BranchRecord {
  public:

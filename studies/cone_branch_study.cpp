@@ -304,10 +304,7 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
   for (const RecordedEvent& e : record_->events())
     if (e.kind == "fold" || e.kind == "branch_point") ++special_index;
   std::ostringstream j;
-  j << std::setprecision(10) << "{\"kind\": \"" << to_string(sp.kind)
-    << "\", \"phi_e\": " << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
-    << ", \"negative_before\": " << sp.negative_before
-    << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width;
+  j << std::setprecision(10) << "{" << special_point_event_fields(sp);
   if (options_.eigenmodes > 0) {
     // The lowest eigenpairs of the pinned Hessian there, their overlap with the pattern's turn
     // and their mode shapes (the state displaced along each mode by 5 % of R at its largest).
@@ -335,12 +332,7 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
     j << "]";
   }
   j << "}";
-  record_->add_event(j.str(), {to_string(sp.kind),
-                               sp.parameter,
-                               branch_,
-                               {{"multiplicity", static_cast<double>(sp.multiplicity)},
-                                {"negative_before", static_cast<double>(sp.negative_before)},
-                                {"negative_after", static_cast<double>(sp.negative_after)}}});
+  record_->add_event(j.str(), special_point_summary(sp, branch_));
   say(line_printf("# %s at phi_e = %.7f (multiplicity %d, negative %d -> %d)", to_string(sp.kind),
                   sp.parameter, sp.multiplicity, sp.negative_before, sp.negative_after));
 }

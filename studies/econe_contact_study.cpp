@@ -84,7 +84,6 @@ class EconeContactRun {
   EconeBranchOptions options_;
   BranchSample start_;  ///< the cone's last state
   std::unique_ptr<BranchRecord> symmetric_, skewed_;
-  bool stability_lost_ = false;
   EconeContactResults results_;
 };
 
@@ -263,36 +262,27 @@ void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s)
   if (which == EconeBranch::Symmetric && std::isfinite(defect))
     results_.max_s4_defect_symmetric =
         std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
-  const ContactBranchSample& c = s;
   char line[256];
   std::snprintf(line, sizeof line, "%-9s %9.5f %12.5e %12.5e %10.3e %8.4f %3d %7.4f %5d %9.2e %3d",
-                to_string(which), c.sample.parameter, c.stretching_energy, c.bending_energy,
-                c.penalty_energy, c.normalized_bending, c.sample.negative_eigenvalues, gamma,
-                c.active_pairs, defect, c.sample.corrector_iterations);
+                to_string(which), s.sample.parameter, s.stretching_energy, s.bending_energy,
+                s.penalty_energy, s.normalized_bending, s.sample.negative_eigenvalues, gamma,
+                s.active_pairs, defect, s.sample.corrector_iterations);
   say(line);
   BranchRecord& r = record(which);
   r.append_row(
-      {c.sample.parameter, c.stretching_energy, c.bending_energy, c.penalty_energy,
-       c.normalized_bending, c.current_area, c.min_distance, static_cast<double>(c.active_pairs),
-       force, gamma, static_cast<double>(c.sample.negative_eigenvalues), c.energy_slope,
-       c.sample.arclength, static_cast<double>(c.sample.corrector_iterations), defect, up, down});
-  r.save_state(c.sample, fingerprint_);
+      {s.sample.parameter, s.stretching_energy, s.bending_energy, s.penalty_energy,
+       s.normalized_bending, s.current_area, s.min_distance, static_cast<double>(s.active_pairs),
+       force, gamma, static_cast<double>(s.sample.negative_eigenvalues), s.energy_slope,
+       s.sample.arclength, static_cast<double>(s.sample.corrector_iterations), defect, up, down});
+  r.save_state(s.sample, fingerprint_);
   r.commit();
 }
 
 void EconeContactRun::on_special(EconeBranch which, const SpecialPoint& sp) {
-  std::ostringstream j;
-  j << std::setprecision(10) << "{\"kind\": \"" << to_string(sp.kind)
-    << "\", \"phi_e\": " << sp.parameter << ", \"multiplicity\": " << sp.multiplicity
-    << ", \"negative_before\": " << sp.negative_before
-    << ", \"negative_after\": " << sp.negative_after << ", \"bracket\": " << sp.bracket_width
-    << "}";
-  record(which).add_event(j.str(), {to_string(sp.kind),
-                                    sp.parameter,
-                                    to_string(which),
-                                    {{"multiplicity", static_cast<double>(sp.multiplicity)},
-                                     {"negative_before", static_cast<double>(sp.negative_before)},
-                                     {"negative_after", static_cast<double>(sp.negative_after)}}});
+  std::string json = "{";
+  json += special_point_event_fields(sp);
+  json += "}";
+  record(which).add_event(json, special_point_summary(sp, to_string(which)));
   say("# " + std::string(to_string(which)) + " branch: " + to_string(sp.kind) +
       " at phi_e = " + fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) +
       " -> " + std::to_string(sp.negative_after) + ")");
@@ -311,9 +301,7 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // A defect above half the radius is a measure that failed (fold directions not found on a
   // turned state), not a cone.
   const double threshold = scene_.study.symmetry_threshold;
-  const auto breaks_s4 = [threshold](double defect) {
-    return defect > threshold && defect < 0.5;
-  };
+  const auto breaks_s4 = [threshold](double defect) { return defect > threshold && defect < 0.5; };
   std::vector<double> skewed_phi;  // of the samples that break S4
   for (std::size_t row = 0; row < skewed_->rows(); ++row)
     if (breaks_s4(skewed_->value(row, "s4_defect")))

@@ -49,9 +49,9 @@ void validate(const ContactBranchOptions& o) {
 }
 
 /// The sample's description with the penalty of its segment.
-ContactBranchSample describe(const ShellModel& model, ContactPenalty* penalty, const BranchSample& sample,
-                             const ContactCandidates& pairs, const ContactProxy& proxy,
-                             const ContactBranchOptions& options) {
+ContactBranchSample describe(const ShellModel& model, ContactPenalty* penalty,
+                             const BranchSample& sample, const ContactCandidates& pairs,
+                             const ContactProxy& proxy, const ContactBranchOptions& options) {
   ContactBranchSample out;
   out.sample = sample;
   out.pairs = pairs;
@@ -158,7 +158,6 @@ ContactBranchTrace trace_contact_branch(
   // converge on its rebuilt pair set is retried from, with a shorter step and a wider margin.
   BranchSample fallback;
   bool have_fallback = false;
-  int start_retries = 0;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -279,6 +278,7 @@ ContactBranchTrace trace_contact_branch(
       continue;
     }
     retries = 0;
+    margin = options.candidate_margin;
     out.cost.continuation += trace.cost;
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
@@ -288,8 +288,7 @@ ContactBranchTrace trace_contact_branch(
       // one (pairs that enter between the two sets can change the forces abruptly). Step back
       // one sample and go on with a shorter step and a wider margin, so that those pairs enter
       // the set while they are still farther than the contact distance.
-      if (have_fallback && start_retries < 4) {
-        ++start_retries;
+      if (have_fallback) {
         ++out.cost.rebuilds_after_violation;
         start_x = fallback.x;
         start_phi = fallback.parameter;
@@ -304,7 +303,6 @@ ContactBranchTrace trace_contact_branch(
                     " did not converge: " + trace.message;
       break;
     }
-    start_retries = 0;
     if (trace.reached_bound && trace.message != "reached max_steps") {
       out.reached_bound = true;
       out.message = trace.message;
@@ -314,9 +312,6 @@ ContactBranchTrace trace_contact_branch(
       out.message = trace.message;
       break;
     }
-    // A segment that ran its steps restores the margin (a retried one keeps the wider one
-    // for its successor only if it ran no step).
-    if (samples_in_segment > 1) margin = options.candidate_margin;
     if (have_before_last_good) {
       fallback = before_last_good;
       have_fallback = true;

@@ -225,3 +225,28 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
 
 }  // namespace
 }  // namespace growshell
+
+namespace growshell {
+namespace {
+
+TEST(SpecialPointEvent, FieldsAndSummaryNameThePointAndItsCounts) {
+  SpecialPoint sp;
+  sp.kind = SpecialPoint::Kind::BranchPoint;
+  sp.parameter = 7.0300350123;
+  sp.multiplicity = 1;
+  sp.negative_before = 0;
+  sp.negative_after = 1;
+  sp.bracket_width = 6.1e-7;
+  EXPECT_EQ("{" + special_point_event_fields(sp) + "}",
+            "{\"kind\": \"branch_point\", \"phi_e\": 7.030035012, \"multiplicity\": 1, "
+            "\"negative_before\": 0, \"negative_after\": 1, \"bracket\": 6.1e-07}");
+  const RecordedEvent e = special_point_summary(sp, "symmetric");
+  EXPECT_EQ(e.kind, "branch_point");
+  EXPECT_EQ(e.phi_e, 7.0300350123);
+  EXPECT_EQ(e.branch, "symmetric");
+  EXPECT_EQ(e.value("negative_after"), 1.0);
+  EXPECT_EQ(e.value("multiplicity"), 1.0);
+}
+
+}  // namespace
+}  // namespace growshell
