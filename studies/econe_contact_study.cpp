@@ -25,6 +25,7 @@
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/ground_state_exchange.hpp"
+#include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/turn_free_stability_index.hpp"
 
@@ -64,6 +65,7 @@ class EconeContactRun {
   }
   void trace_cone();
   void set_up_contact();
+  void check_orientation();
   std::vector<BranchEnergySample> cone_energies(double below) const;
   void on_sample(EconeBranch which, const ContactBranchSample& s);
   void on_special(EconeBranch which, const SpecialPoint& sp);
@@ -219,6 +221,84 @@ void EconeContactRun::set_up_contact() {
       fixed(c.exclusion_radius, 5) + " m (" + fixed(c.exclusion_radius / h_, 3) +
       " h), penalty k = " + fixed(c.stiffness, 1) + " N/m, proxy of " +
       std::to_string(proxy_->num_vertices()) + " vertices");
+}
+
+/// The pattern of the contact start turned against the mesh, relaxed and compared
+/// (study.orientation_check_turns); each relaxed state is kept in DIR/orientation/.
+void EconeContactRun::check_orientation() {
+  const std::vector<double>& turns_deg = scene_.study.orientation_check_turns;
+  if (turns_deg.empty()) return;
+  PatternOrientationCheckOptions o;
+  for (const double t : turns_deg) o.turns.push_back(t * std::numbers::pi / 180.0);
+  o.contact = options_.contact;
+  o.relaxation = options_.relaxation;
+  // Steps bounded so that no layer passes through another unseen; the turned pattern may have
+  // far to go before it settles.
+  o.relaxation.max_step_inf_norm = 0.25 * h_;
+  o.relaxation.max_iterations = 1000;
+  o.core_radius = h_;
+  say("# orientation check at phi_e = " + fixed(start_.parameter, 6) + ": the pattern turned by " +
+      std::to_string(turns_deg.size()) + " angle(s) against the mesh and relaxed");
+  const PatternOrientationCheck check =
+      check_pattern_orientation(*model_, *proxy_, start_.x, start_.parameter, pinned_, o);
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  EconeOrientationCheck r;
+  r.phi_e = check.phi_e;
+  r.fold_angle_deg = check.fold_angle * kDeg;
+  r.s4_defect = check.s4_defect;
+  r.core_radius = o.core_radius;
+  const fs::path dir = fs::path(dir_) / "orientation";
+  fs::create_directories(dir);
+  for (const TurnedPatternState& t : check.turned) {
+    EconeOrientationCheck::Turned e;
+    e.turn_deg = t.turn * kDeg;
+    e.converged = t.converged;
+    e.message = t.message;
+    if (t.converged) {
+      e.fold_angle_deg = t.fold_angle * kDeg;
+      e.energy_relative = t.energy_relative;
+      e.s4_defect = t.s4_defect;
+      e.chord_up = t.chord_up;
+      e.chord_down = t.chord_down;
+      e.energy_change_core = t.energy_change_core;
+      e.energy_change_outside = t.energy_change_outside;
+      e.lowest_eigenvalue = t.lowest_eigenvalue;
+      e.turn_free_index = t.turn_free_index;
+      BranchSample sample;
+      sample.parameter = check.phi_e;
+      sample.x = t.x;
+      sample.tangent_state = Eigen::VectorXd::Zero(t.x.size());
+      e.state = "orientation/turn_" + fixed(e.turn_deg, 3) + ".state";
+      save_branch_state(dir_ + "/" + e.state, sample, fingerprint_);
+    }
+    say("# turned " + fixed(e.turn_deg, 3) + " deg: " +
+        (t.converged
+             ? "settled at " + fixed(e.fold_angle_deg, 3) + " deg, energy " +
+                   fixed(100.0 * e.energy_relative, 4) + " % against the traced state, S4 " +
+                   fixed(e.s4_defect, 5) + ", change inside h " + fixed(e.energy_change_core, 6) +
+                   " J, outside " + fixed(e.energy_change_outside, 6) + " J, turn-free index " +
+                   std::to_string(e.turn_free_index)
+             : "relaxation failed: " + t.message));
+    // A lower state that breaks S4: the traced symmetric cone is not the sheet's lowest state
+    // here, and energy comparisons with it depend on the mesh (docs/results.md, "The apex core
+    // against the mesh").
+    if (t.converged && -e.energy_relative > options_.energy_margin &&
+        e.s4_defect > scene_.study.symmetry_threshold && e.s4_defect < 0.5) {
+      std::ostringstream w;
+      w << "orientation: the pattern turned by " << e.turn_deg
+        << " deg against the mesh relaxed at phi_e = " << fixed(check.phi_e, 4) << " to a state "
+        << fixed(-100.0 * e.energy_relative, 3)
+        << " % below the traced symmetric cone that breaks S4 (defect " << fixed(e.s4_defect, 5)
+        << "; energy change inside r = h " << fixed(e.energy_change_core, 6) << " J, outside "
+        << fixed(e.energy_change_outside, 6)
+        << " J): phi_crit_energy and the skewed cone's energies compare with a symmetric branch "
+           "that the mesh's mirror lines hold";
+      results_.warnings.push_back(w.str());
+      say("# warning: " + w.str());
+    }
+    r.turned.push_back(std::move(e));
+  }
+  results_.orientation_check = std::move(r);
 }
 
 /// The contact-free cone's energies and slopes below `below`, by increasing phi_e from its
@@ -402,6 +482,8 @@ EconeContactResults EconeContactRun::run() {
   trace_cone();
   fs::remove(fs::path(dir_) / "results.json");  // stale once the branches are traced again
   set_up_contact();
+  fs::remove_all(fs::path(dir_) / "orientation");  // stale once the cone is traced again
+  check_orientation();
   symmetric_ =
       std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
   skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);

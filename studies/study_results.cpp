@@ -85,13 +85,40 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
                  {"lowest_phi", number_or_null(r.skewed_lowest_phi)},
                  {"highest_phi", number_or_null(r.skewed_highest_phi)}};
   if (r.ipopt)
-    j["ipopt"] = {{"converged", r.ipopt->converged},
-                  {"message", r.ipopt->message},
-                  {"relative_energy_difference", number_or_null(r.ipopt->relative_energy_difference)},
-                  {"state_difference_over_h", number_or_null(r.ipopt->state_difference_over_h)},
-                  {"min_distance_over_h", number_or_null(r.ipopt->min_distance_over_h)}};
+    j["ipopt"] = {
+        {"converged", r.ipopt->converged},
+        {"message", r.ipopt->message},
+        {"relative_energy_difference", number_or_null(r.ipopt->relative_energy_difference)},
+        {"state_difference_over_h", number_or_null(r.ipopt->state_difference_over_h)},
+        {"min_distance_over_h", number_or_null(r.ipopt->min_distance_over_h)}};
   else
     j["ipopt"] = nullptr;
+  if (r.orientation_check) {
+    const EconeOrientationCheck& o = *r.orientation_check;
+    Json turned = Json::array();
+    for (const EconeOrientationCheck::Turned& t : o.turned)
+      turned.push_back({{"turn_deg", number_or_null(t.turn_deg)},
+                        {"converged", t.converged},
+                        {"message", t.message},
+                        {"fold_angle_deg", number_or_null(t.fold_angle_deg)},
+                        {"energy_relative", number_or_null(t.energy_relative)},
+                        {"s4_defect", number_or_null(t.s4_defect)},
+                        {"chord_up", number_or_null(t.chord_up)},
+                        {"chord_down", number_or_null(t.chord_down)},
+                        {"energy_change_core", number_or_null(t.energy_change_core)},
+                        {"energy_change_outside", number_or_null(t.energy_change_outside)},
+                        {"lowest_eigenvalue", number_or_null(t.lowest_eigenvalue)},
+                        {"turn_free_index", t.turn_free_index},
+                        {"state", t.state.empty() ? Json(nullptr) : Json(t.state)}});
+    j["orientation_check"] = {{"phi_e", number_or_null(o.phi_e)},
+                              {"fold_angle_deg", number_or_null(o.fold_angle_deg)},
+                              {"s4_defect", number_or_null(o.s4_defect)},
+                              {"core_radius", number_or_null(o.core_radius)},
+                              {"turned", turned}};
+  } else {
+    j["orientation_check"] = nullptr;
+  }
+  j["warnings"] = r.warnings;
   j["completed"] = r.completed;
   j["end"] = r.end;
   j["cone_csv"] = "cone/branch.csv";

@@ -73,6 +73,29 @@ struct EconeIpoptCheck {
   double min_distance_over_h = 0.0;      ///< smallest pair distance at Ipopt's solution / h
 };
 
+/// The pattern-orientation check at the cone's last contact-free state
+/// (studies/pattern_orientation_check.hpp), in results.json's units: angles in degrees.
+struct EconeOrientationCheck {
+  double phi_e = 0.0;
+  double fold_angle_deg = 0.0;  ///< where the traced state's up-fold lies
+  double s4_defect = 0.0;       ///< the traced state's
+  double core_radius = 0.0;     ///< m: energy changes are split here
+  struct Turned {
+    double turn_deg = 0.0;
+    bool converged = false;
+    std::string message;
+    double fold_angle_deg = 0.0;   ///< where the relaxed state's up-fold settled
+    double energy_relative = 0.0;  ///< (E_turned - E_traced) / E_traced, E = E_s + E_b + P
+    double s4_defect = 0.0;
+    double chord_up = 0.0, chord_down = 0.0;
+    double energy_change_core = 0.0, energy_change_outside = 0.0;  ///< J
+    double lowest_eigenvalue = 0.0;                                ///< N/m
+    int turn_free_index = 0;
+    std::string state;  ///< the relaxed state's file, relative to the study directory
+  };
+  std::vector<Turned> turned;
+};
+
 /// An energy crossing of the symmetric and the skewed branch.
 struct EconeCrossing {
   double phi_e = 0.0;
@@ -110,7 +133,7 @@ struct EconeContactResults {
   /// The largest S4 defect of the symmetric branch's samples with contact.
   std::optional<double> max_s4_defect_symmetric;
   bool skewed_found = false;
-  std::string skewed_message;  ///< how the skewed cone was found, or why not
+  std::string skewed_message;            ///< how the skewed cone was found, or why not
   std::optional<double> skew_search_at;  ///< phi_e of the relaxed symmetric state
   /// (E_symmetric - E_skewed) / E_symmetric at skew_search_at (E = E_s + E_b + P).
   std::optional<double> skewed_energy_below_symmetric;
@@ -118,6 +141,12 @@ struct EconeContactResults {
   /// above study.symmetry_threshold and below 0.5, a larger one being a failed measure).
   std::optional<double> skewed_lowest_phi, skewed_highest_phi;
   std::optional<EconeIpoptCheck> ipopt;
+  /// The pattern turned against the mesh at the contact start (study.orientation_check_turns).
+  std::optional<EconeOrientationCheck> orientation_check;
+  /// Caveats on the values above, each a sentence naming what it concerns: e.g. a turned
+  /// pattern that relaxed to a lower state breaking S4, so that the symmetric branch traced
+  /// with its folds on the mesh's mirror lines is not the lowest state of the sheet there.
+  std::vector<std::string> warnings;
   /// Whether every stage ran to its end (the symmetric branch to phi_max, the skewed cone
   /// found and both its traces ended at a bound, or the downward one below the exchange it
   /// located), and why not ("completed (...)" says where a downward trace stopped early).
@@ -134,10 +163,14 @@ struct EconeContactResults {
 /// error_estimate, skewed_stable}],
 /// max_s4_defect_symmetric, skewed {found, message, search_at, energy_below_symmetric,
 /// lowest_phi, highest_phi}, ipopt ({converged, message, relative_energy_difference,
-/// state_difference_over_h, min_distance_over_h} or null), completed, end, cone_csv,
+/// state_difference_over_h, min_distance_over_h} or null), orientation_check ({phi_e,
+/// fold_angle_deg, s4_defect, core_radius, turned [{turn_deg, converged, message,
+/// fold_angle_deg, energy_relative, s4_defect, chord_up, chord_down, energy_change_core,
+/// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), warnings
+/// [strings], completed,
+/// end, cone_csv,
 /// symmetric_csv, skewed_csv, events (the three events.json), wall_seconds. Unset and
 /// non-finite values are null.
 std::string econe_contact_results_json(const EconeContactResults& results);
-
 
 }  // namespace growshell

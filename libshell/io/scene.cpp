@@ -352,6 +352,11 @@ const Field kFields[] = {
   {"study.penalty_stiffness_factor",
    [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},
+  {"study.orientation_check_turns",
+   [](Scene& s, const Json& v, const std::string& k) {
+     s.study.orientation_check_turns = read_number_list(v, k);
+   },
+   [](const Scene& s) { return Json(s.study.orientation_check_turns); }},
   {"study.ipopt_check",
    [](Scene& s, const Json& v, const std::string& k) { s.study.ipopt_check = read_bool(v, k); },
    [](const Scene& s) { return Json(s.study.ipopt_check); }},
@@ -520,6 +525,14 @@ void validate_scene(const Scene& scene) {
   if (st.skew_search_at) require_positive(*st.skew_search_at, "study.skew_search_at");
   require_positive(st.contact_max_step, "study.contact_max_step");
   require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");
+  for (std::size_t i = 0; i < st.orientation_check_turns.size(); ++i) {
+    const std::string key = "study.orientation_check_turns[" + std::to_string(i) + "]";
+    const double turn = st.orientation_check_turns[i];
+    if (!(std::isfinite(turn) && turn > -90.0 && turn < 90.0 && turn != 0.0))
+      fail(key + " = " + format(turn) + " must be a turn in degrees in (-90, 90) other than 0");
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.orientation_check_turns[j] == turn) fail(key + " = " + format(turn) + " is listed twice");
+  }
   if (st.kind == StudyKind::ThicknessSeries) {
     if (st.thicknesses.size() < 2)
       fail("study.thicknesses must list at least two thicknesses for study.kind = "

@@ -261,6 +261,13 @@ struct SceneStudy {
   /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both
   /// cones are free of contact, where penalty and hard constraints coincide.
   bool ipopt_check = false;
+  /// econe_contact only: turns of the fold pattern over the material (degrees, each finite and
+  /// in (-90, 90), none 0, no two equal) by which the cone's last contact-free state is turned,
+  /// relaxed and compared with the traced one (studies/pattern_orientation_check.hpp;
+  /// results.json's orientation_check). Empty: no check. The default 22.5 degrees places the
+  /// folds half-way between mirror lines of the gmsh_d4 mesh and on the other mirror family of
+  /// the rings mesh.
+  std::vector<double> orientation_check_turns = {22.5};
 };
 
 /// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.

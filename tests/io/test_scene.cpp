@@ -787,5 +787,28 @@ TEST(Scene, ThicknessSeriesReadsItsThicknessesAndRefusesBadLists) {
   EXPECT_EQ(over.study.thicknesses.back(), 0.015);
 }
 
+TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
+  EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "econe_contact", "orientation_check_turns": [11.25, -22.5]}})", "test");
+  EXPECT_EQ(s.study.orientation_check_turns, (std::vector<double>{11.25, -22.5}));
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.orientation_check_turns,
+            s.study.orientation_check_turns);
+  EXPECT_TRUE(parse_scene(R"({"study": {"orientation_check_turns": []}})", "t")
+                  .study.orientation_check_turns.empty());  // no check
+
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  for (const char* bad : {"[0]", "[90]", "[-95]", "[22.5, -90]"})
+    EXPECT_NE(error_of(parse(std::string(R"({"study": {"orientation_check_turns": )") + bad + "}}"))
+                  .find("study.orientation_check_turns"),
+              std::string::npos)
+        << bad;
+  EXPECT_NE(error_of(parse(R"({"study": {"orientation_check_turns": [10, 10]}})")).find("listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"orientation_check_turns": 22.5}})")).find("array of numbers"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace growshell

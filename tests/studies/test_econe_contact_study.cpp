@@ -73,6 +73,8 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "max_s4_defect_symmetric",
                                              "skewed",
                                              "ipopt",
+                                             "orientation_check",
+                                             "warnings",
                                              "completed",
                                              "end",
                                              "cone_csv",
@@ -103,6 +105,35 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   const auto k = nlohmann::json::parse(econe_contact_results_json(checked));
   EXPECT_TRUE(k["ipopt"]["converged"].get<bool>());
   EXPECT_DOUBLE_EQ(k["ipopt"]["min_distance_over_h"].get<double>(), 1.01);
+  EXPECT_TRUE(j["orientation_check"].is_null());  // not run
+  EXPECT_TRUE(j["warnings"].is_array() && j["warnings"].empty());
+  // The orientation check: per turn, a failed relaxation has its message and no state.
+  EconeContactResults oriented = sample_results();
+  EconeOrientationCheck check;
+  check.phi_e = 6.55;
+  check.core_radius = 0.04;
+  EconeOrientationCheck::Turned settled;
+  settled.turn_deg = 22.5;
+  settled.converged = true;
+  settled.fold_angle_deg = 22.54;
+  settled.energy_relative = -0.0087;
+  settled.s4_defect = 0.0054;
+  settled.turn_free_index = 0;
+  settled.state = "orientation/turn_22.500.state";
+  EconeOrientationCheck::Turned failed;
+  failed.turn_deg = -10.0;
+  failed.message = "relaxation failed: LineSearchFailed";
+  check.turned = {settled, failed};
+  oriented.orientation_check = check;
+  oriented.warnings = {"orientation: a turned state is lower"};
+  const auto o = nlohmann::json::parse(econe_contact_results_json(oriented));
+  ASSERT_EQ(o["orientation_check"]["turned"].size(), 2u);
+  EXPECT_EQ(o["orientation_check"]["phi_e"].get<double>(), 6.55);
+  EXPECT_EQ(o["orientation_check"]["turned"][0]["energy_relative"].get<double>(), -0.0087);
+  EXPECT_EQ(o["orientation_check"]["turned"][0]["state"], "orientation/turn_22.500.state");
+  EXPECT_FALSE(o["orientation_check"]["turned"][1]["converged"].get<bool>());
+  EXPECT_TRUE(o["orientation_check"]["turned"][1]["state"].is_null());
+  EXPECT_EQ(o["warnings"][0], "orientation: a turned state is lower");
   // Without phi_e^crit by energy, its criterion is null too.
   EconeContactResults none = sample_results();
   none.phi_crit_energy.reset();
