@@ -34,10 +34,11 @@ using namespace growshell;
 const char* kUsage = R"(usage: orientation_check RUN_DIR [options]
   --phi P          the saved state nearest this excess angle is checked (required)
   --turns A,B,...  turns of the fold pattern in degrees (default 22.5)
-  --tolerance T    force tolerance of the relaxation relative to Y h^3 / R (default 1e-6)
-RUN_DIR: a cone_branch study's directory (scene.json, states/). The penalty is the
-econe_contact study's: contact distance and exclusion radius from the scene, stiffness
-study.penalty_stiffness_factor Y l^2 / h, margin h.
+  --tolerance T    force tolerance of the relaxation relative to Y h^3 / R (default: the
+                   scene's study.tolerance)
+RUN_DIR: a cone_branch study's directory (scene.json, states/). The penalty and the
+relaxation are the studies' (scene_orientation_check_options): contact distance and exclusion
+radius from the scene, stiffness study.penalty_stiffness_factor Y l^2 / h, margin h.
 Writes RUN_DIR/orientation_check_phi<P>.csv (P as given), one row per turn:
   phi_e, turn_deg, converged, fold_angle_deg (where the folds settled; the traced state's in
   traced_fold_angle_deg), energy_relative ((E_turned - E_traced) / E_traced, E = E_s + E_b + P),
@@ -75,10 +76,10 @@ int run(int argc, char** argv) {
   const std::string phi_text = cl.text("--phi", "");
   const double phi = cl.number("--phi", std::numeric_limits<double>::quiet_NaN());
   const std::vector<double> turns_deg = parse_turns(cl.text("--turns", "22.5"));
-  const double tolerance = cl.number("--tolerance", 1e-6);
+  const double tolerance = cl.number("--tolerance", -1.0);
   cl.reject_unknown();
   if (!std::isfinite(phi)) throw std::invalid_argument("--phi is required (a finite excess angle)");
-  if (!(tolerance > 0.0 && std::isfinite(tolerance)))
+  if (!(tolerance > 0.0 && std::isfinite(tolerance)) && tolerance != -1.0)
     throw std::invalid_argument("--tolerance must be finite and > 0");
 
   const Scene scene = read_scene(dir + "/scene.json");
@@ -95,23 +96,11 @@ int run(int argc, char** argv) {
   }
   if (state.x.size() == 0) throw std::invalid_argument(dir + "/states holds no saved state");
 
-  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  Scene checked = scene;
+  checked.study.orientation_check_turns = turns_deg;
+  if (tolerance != -1.0) checked.study.tolerance = tolerance;
   const ContactProxy proxy = make_contact_proxy(model, 1);
-  PatternOrientationCheckOptions o;
-  for (const double t : turns_deg) o.turns.push_back(t * std::numbers::pi / 180.0);
-  o.contact.contact_distance = scene.physics.contact_distance.value_or(h);
-  o.contact.exclusion_radius = resolved_exclusion_radius(scene);
-  o.contact.candidate_margin = h;
-  o.contact.stiffness =
-      scene.study.penalty_stiffness_factor *
-      contact_stiffness_scale(scene.material.youngs_modulus, h, proxy_mean_edge_length(proxy));
-  o.contact.violation_tolerance = 0.25 * h;
-  o.contact.repin_above_condition = 20.0;
-  o.relaxation.gradient_tolerance = tolerance * model.natural_force_scale();
-  o.relaxation.decrement_tolerance = 1e-6 * scene.material.youngs_modulus * h * h * h;
-  o.relaxation.max_step_inf_norm = 0.25 * h;
-  o.relaxation.max_iterations = 1000;
-  o.core_radius = h;
+  const PatternOrientationCheckOptions o = scene_orientation_check_options(checked, model, proxy);
   const Eigen::VectorXd& X = model.reference_positions();
   const std::vector<Eigen::Index> pins = mirror_axis_pinned_dofs(
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3),

@@ -26,6 +26,7 @@
 #include "studies/cone_branch_key_values.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/cone_sample_measures.hpp"
+#include "studies/pattern_orientation_check.hpp"
 #include "studies/pattern_phase.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/special_point_modes.hpp"
@@ -37,9 +38,9 @@ namespace {
 
 /// The columns of the cone's branch.csv.
 const std::vector<std::string> kColumns = {
-    "phi_e",     "E_stretch", "E_bend",      "Eb_hat",
-    "area",      "min_gap",   "n_negative",  "corrector_iterations",
-    "arclength", "folds",     "core_radius", "s4_defect",
+    "phi_e",     "E_stretch",  "E_bend",      "Eb_hat",
+    "area",      "min_gap",    "n_negative",  "corrector_iterations",
+    "arclength", "folds",      "core_radius", "s4_defect",
     "chord_up",  "chord_down", "phase_force"};
 
 /// printf into a string: one line of the log.
@@ -110,6 +111,7 @@ class ConeBranchRun {
   bool trace_from_flat(BranchTrace& trace);
   BranchTrace trace_from_state();
   ConeBranchStudy finish(const BranchTrace& trace, bool entered_cone, double wall);
+  std::optional<ConeBranchResults::Orientation> check_orientation(double phi);
 
   Scene scene_;
   ConeBranchStudyOptions options_;
@@ -132,7 +134,7 @@ class ConeBranchRun {
   BranchSample start_state_;  ///< the saved state a resumed study starts from
   std::string start_state_path_;
   std::uint64_t model_fingerprint_ = 0;  ///< scene_model_fingerprint, stored with every state
-  std::string branch_ = "flat";  ///< the branch the trace is on, for the recorded events
+  std::string branch_ = "flat";          ///< the branch the trace is on, for the recorded events
   bool skip_next_sample_ = false;
   double arclength_offset_ = 0.0;
   int samples_ = 0;  ///< samples recorded on the cone (for output.snapshot_every)
@@ -310,8 +312,8 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
     // and their mode shapes (the state displaced along each mode by 5 % of R at its largest).
     // The pins are re-chosen on the state where the trace's barely hold its rigid motions, as
     // the stability index does, so that a nearly free spin is not reported as a mode.
-    const std::vector<Eigen::Index> pins = analysis_pins(
-        *model_, sp.x, pinned_, TurnFreeStabilityIndex::kDefaultMaxPinCondition);
+    const std::vector<Eigen::Index> pins =
+        analysis_pins(*model_, sp.x, pinned_, TurnFreeStabilityIndex::kDefaultMaxPinCondition);
     const SpecialPointModes modes =
         special_point_modes(*model_, sp.x, sp.parameter, pins, options_.eigenmodes);
     j << ", \"orientation_overlap\": [";
@@ -392,8 +394,8 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
     return trace_branch_with_phase_condition(*model_, phase_functional_, x0, phi0, dx, dphi,
                                              pinned_, options, sample, special, events_, event);
   }
-  return trace_branch_along(*model_, x0, phi0, dx, dphi, pinned_, options, sample, special,
-                            events_, event);
+  return trace_branch_along(*model_, x0, phi0, dx, dphi, pinned_, options, sample, special, events_,
+                            event);
 }
 
 /// The flat branch to the branch point of the wanted mode, then the cone; false (with the
@@ -420,7 +422,8 @@ bool ConeBranchRun::trace_from_flat(BranchTrace& trace) {
         return trace_cone(start, entry.branch_point.parameter, mode, 0.0);
       });
   if (departure.attempts > 1)
-    say(line_printf("# the corrector converged onto the cone at a step off the branch point of "
+    say(
+        line_printf("# the corrector converged onto the cone at a step off the branch point of "
                     "%.3g, after %d larger ones failed",
                     departure.switch_step, departure.attempts - 1));
   trace = departure.trace;
@@ -496,11 +499,12 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
   r.thickness = h_;
   r.mode = scene_.continuation.mode;
   r.mesh.family = mesh_family_name(scene_.mesh.family);
-  if (graded_by_size(scene_.mesh.family))
-    r.mesh.size_slope = scene_.mesh.size_slope;
+  if (graded_by_size(scene_.mesh.family)) r.mesh.size_slope = scene_.mesh.size_slope;
   r.mesh.elements = static_cast<long long>(model_->num_elements());
   r.mesh.unknowns = static_cast<long long>(model_->dimension());
   set_cone_branch_key_values(*record_, r);
+  if (entered_cone && scene_.study.orientation_check_at)
+    r.orientation = check_orientation(*scene_.study.orientation_check_at);
   r.completed = entered_cone && trace.reached_bound;
   r.end = trace.message;
   r.wall_seconds = wall;
@@ -509,6 +513,41 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
   say(line_printf("# wrote %s/branch.csv, events.json, states/, branch.pvd, results.json",
                   out_dir_.c_str()));
   return out;
+}
+
+/// study.orientation_check_at: the saved state nearest phi turned against the mesh, relaxed and
+/// compared (studies/pattern_orientation_check.hpp); the lowest turned state, if any converged.
+std::optional<ConeBranchResults::Orientation> ConeBranchRun::check_orientation(double phi) {
+  BranchSample state;
+  double distance = std::numeric_limits<double>::infinity();
+  for (const std::filesystem::path& file : saved_state_files(out_dir_)) {
+    BranchSample s = load_branch_state(file.string(), model_->dimension(), model_fingerprint_);
+    if (std::abs(s.parameter - phi) < distance) {
+      distance = std::abs(s.parameter - phi);
+      state = std::move(s);
+    }
+  }
+  if (state.x.size() == 0) return std::nullopt;
+  const ContactProxy proxy = make_contact_proxy(*model_, 1);
+  const PatternOrientationCheckOptions o = scene_orientation_check_options(scene_, *model_, proxy);
+  const PatternOrientationCheck check =
+      check_pattern_orientation(*model_, proxy, state.x, state.parameter, pinned_, o);
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  std::optional<ConeBranchResults::Orientation> lowest;
+  for (const TurnedPatternState& t : check.turned) {
+    say(t.converged
+            ? line_printf("# orientation at phi_e = %.6f: turned %.3f deg, settled at %.3f deg, "
+                          "energy %+.4f %% against the traced state, S4 defect %.3e",
+                          check.phi_e, t.turn * kDeg, t.fold_angle * kDeg,
+                          100.0 * t.energy_relative, t.s4_defect)
+            : line_printf("# orientation at phi_e = %.6f: turned %.3f deg, relaxation failed: %s",
+                          check.phi_e, t.turn * kDeg, t.message.c_str()));
+    if (!t.converged || (lowest && t.energy_relative >= lowest->energy_relative)) continue;
+    lowest = ConeBranchResults::Orientation{
+        check.phi_e, t.turn * kDeg, t.fold_angle * kDeg,  t.energy_relative,      t.s4_defect,
+        t.chord_up,  t.chord_down,  t.energy_change_core, t.energy_change_outside};
+  }
+  return lowest;
 }
 
 ConeBranchStudy ConeBranchRun::run() {

@@ -228,15 +228,9 @@ void EconeContactRun::set_up_contact() {
 void EconeContactRun::check_orientation() {
   const std::vector<double>& turns_deg = scene_.study.orientation_check_turns;
   if (turns_deg.empty()) return;
-  PatternOrientationCheckOptions o;
-  for (const double t : turns_deg) o.turns.push_back(t * std::numbers::pi / 180.0);
-  o.contact = options_.contact;
-  o.relaxation = options_.relaxation;
-  // Steps bounded so that no layer passes through another unseen; the turned pattern may have
-  // far to go before it settles.
-  o.relaxation.max_step_inf_norm = 0.25 * h_;
-  o.relaxation.max_iterations = 1000;
-  o.core_radius = h_;
+  // The penalty and the relaxation as every study runs the check: the penalty is this study's.
+  const PatternOrientationCheckOptions o =
+      scene_orientation_check_options(scene_, *model_, *proxy_);
   say("# orientation check at phi_e = " + fixed(start_.parameter, 6) + ": the pattern turned by " +
       std::to_string(turns_deg.size()) + " angle(s) against the mesh and relaxed");
   const PatternOrientationCheck check =

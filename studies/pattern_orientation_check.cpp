@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "core/objective_at_parameter.hpp"
 #include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/analysis/state_transfer.hpp"
+#include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 #include "studies/turn_free_stability_index.hpp"
@@ -48,6 +50,29 @@ double penalised_energy(const ShellModel& model, const ContactProxy& proxy,
 }
 
 }  // namespace
+
+PatternOrientationCheckOptions scene_orientation_check_options(const Scene& scene,
+                                                               const ShellModel& model,
+                                                               const ContactProxy& proxy) {
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  const double Y = scene.material.youngs_modulus;
+  PatternOrientationCheckOptions o;
+  for (const double t : scene.study.orientation_check_turns)
+    o.turns.push_back(t * std::numbers::pi / 180.0);
+  o.contact.contact_distance = scene.physics.contact_distance.value_or(h);
+  o.contact.exclusion_radius = resolved_exclusion_radius(scene);
+  o.contact.candidate_margin = h;
+  o.contact.stiffness = scene.study.penalty_stiffness_factor *
+                        contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
+  o.contact.violation_tolerance = 0.25 * h;
+  o.contact.repin_above_condition = 20.0;
+  o.relaxation.gradient_tolerance = scene.study.tolerance * model.natural_force_scale();
+  o.relaxation.decrement_tolerance = 1e-6 * Y * h * h * h;
+  o.relaxation.max_step_inf_norm = 0.25 * h;
+  o.relaxation.max_iterations = 1000;
+  o.core_radius = h;
+  return o;
+}
 
 double PatternOrientationCheck::largest_energy_change() const {
   double largest = 0.0;

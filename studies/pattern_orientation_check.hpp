@@ -16,6 +16,7 @@
 
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/io/scene.hpp"
 #include "solvers/contact/contact_branch.hpp"
 #include "solvers/newton/newton_solver.hpp"
 
@@ -34,6 +35,16 @@ struct PatternOrientationCheckOptions {
   /// the apex core inside, the cone outside.
   double core_radius = 0.0;
 };
+
+/// The check as the studies run it on `scene`: the turns of study.orientation_check_turns; the
+/// econe_contact study's penalty (contact distance and exclusion radius from the scene,
+/// stiffness study.penalty_stiffness_factor Y l^2 / h with l the spacing of `proxy`, margin h,
+/// rigid-motion pins re-chosen above a condition number of 20); the relaxation to
+/// study.tolerance Y h^3 / R in force with the decrement test at 1e-6 Y h^3, each Newton step
+/// moving no dof by more than h / 4, up to 1000 steps; the core radius h.
+PatternOrientationCheckOptions scene_orientation_check_options(const Scene& scene,
+                                                               const ShellModel& model,
+                                                               const ContactProxy& proxy);
 
 /// One turned and relaxed state.
 struct TurnedPatternState {

@@ -40,6 +40,20 @@ std::string cone_branch_results_json(const ConeBranchResults& r) {
   j["max_s4_defect_before_contact"] = number_or_null(r.max_s4_defect_before_contact);
   j["phi_symmetry_lost"] = number_or_null(r.phi_symmetry_lost);
   j["phi_last"] = number_or_null(r.phi_last);
+  // Flat keys, so that a sweep's tables can show them.
+  const auto orientation = [&r](double ConeBranchResults::Orientation::*field) {
+    return r.orientation ? number_or_null((*r.orientation).*field) : Json(nullptr);
+  };
+  using O = ConeBranchResults::Orientation;
+  j["orientation_phi"] = orientation(&O::phi_e);
+  j["orientation_turn_deg"] = orientation(&O::turn_deg);
+  j["orientation_fold_angle_deg"] = orientation(&O::fold_angle_deg);
+  j["orientation_energy_relative"] = orientation(&O::energy_relative);
+  j["orientation_s4_defect"] = orientation(&O::s4_defect);
+  j["orientation_chord_up"] = orientation(&O::chord_up);
+  j["orientation_chord_down"] = orientation(&O::chord_down);
+  j["orientation_energy_change_core"] = orientation(&O::energy_change_core);
+  j["orientation_energy_change_outside"] = orientation(&O::energy_change_outside);
   j["completed"] = r.completed;
   j["end"] = r.end;
   j["branch_csv"] = "branch.csv";

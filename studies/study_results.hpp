@@ -44,6 +44,20 @@ struct ConeBranchResults {
   std::optional<double> phi_symmetry_lost;
   /// The last sample of the cone.
   std::optional<double> phi_last;
+  /// The orientation check (study.orientation_check_at): at the saved state nearest that
+  /// phi_e, the turned and relaxed state of lowest energy among study.orientation_check_turns
+  /// (studies/pattern_orientation_check.hpp); unset without a check or if no relaxation
+  /// converged.
+  struct Orientation {
+    double phi_e = 0.0;
+    double turn_deg = 0.0;
+    double fold_angle_deg = 0.0;   ///< where its up-fold settled (the traced cone's is at 0)
+    double energy_relative = 0.0;  ///< (E_turned - E_traced) / E_traced
+    double s4_defect = 0.0;
+    double chord_up = 0.0, chord_down = 0.0;
+    double energy_change_core = 0.0, energy_change_outside = 0.0;  ///< J, split at r = h
+  };
+  std::optional<Orientation> orientation;
   /// Whether the trace reached its end (phi_max, or contact when it stops there) rather than
   /// giving up (step below min_step, no branch point found), and the trace's own words.
   bool completed = false;
@@ -55,7 +69,10 @@ struct ConeBranchResults {
 /// study ("cone_branch"), thickness, mode, mesh {family, size_slope, elements, unknowns},
 /// phi_branch, phi_max, eb_hat_max, phi_gap_h, phi_kiss, phi_kiss_criterion
 /// ("midsurface_contact"), phi_crit_stability, max_s4_defect_before_contact,
-/// phi_symmetry_lost, phi_last, completed, end, branch_csv ("branch.csv"), events
+/// phi_symmetry_lost, phi_last, orientation_phi, orientation_turn_deg,
+/// orientation_fold_angle_deg, orientation_energy_relative, orientation_s4_defect,
+/// orientation_chord_up, orientation_chord_down, orientation_energy_change_core,
+/// orientation_energy_change_outside, completed, end, branch_csv ("branch.csv"), events
 /// ("events.json"), wall_seconds. Unset and non-finite values are null.
 std::string cone_branch_results_json(const ConeBranchResults& results);
 

@@ -357,6 +357,11 @@ const Field kFields[] = {
      s.study.orientation_check_turns = read_number_list(v, k);
    },
    [](const Scene& s) { return Json(s.study.orientation_check_turns); }},
+  {"study.orientation_check_at",
+   [](Scene& s, const Json& v, const std::string& k) {
+     s.study.orientation_check_at = read_number_or_auto(v, k);
+   },
+   [](const Scene& s) { return write_number_or_auto(s.study.orientation_check_at); }},
   {"study.ipopt_check",
    [](Scene& s, const Json& v, const std::string& k) { s.study.ipopt_check = read_bool(v, k); },
    [](const Scene& s) { return Json(s.study.ipopt_check); }},
@@ -523,6 +528,12 @@ void validate_scene(const Scene& scene) {
   require_nonnegative(st.core_radius, "study.core_radius");
   require_finite(st.phi_max_limit, "study.phi_max_limit");
   if (st.skew_search_at) require_positive(*st.skew_search_at, "study.skew_search_at");
+  if (st.orientation_check_at) require_positive(*st.orientation_check_at, "study.orientation_check_at");
+  if (st.orientation_check_at && st.orientation_check_turns.empty())
+    fail("study.orientation_check_at is set but study.orientation_check_turns is empty: no turn to check");
+  if (st.orientation_check_at && scene.continuation.mode != 2)
+    fail("study.orientation_check_at measures the two-fold cone's S4 symmetry: it needs "
+         "continuation.mode = 2 (got " + std::to_string(scene.continuation.mode) + ")");
   require_positive(st.contact_max_step, "study.contact_max_step");
   require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");
   for (std::size_t i = 0; i < st.orientation_check_turns.size(); ++i) {

@@ -261,13 +261,18 @@ struct SceneStudy {
   /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both
   /// cones are free of contact, where penalty and hard constraints coincide.
   bool ipopt_check = false;
-  /// econe_contact only: turns of the fold pattern over the material (degrees, each finite and
+  /// econe_contact (at its contact start) and the cone_branch study's check at
+  /// orientation_check_at: turns of the fold pattern over the material (degrees, each finite and
   /// in (-90, 90), none 0, no two equal) by which the cone's last contact-free state is turned,
   /// relaxed and compared with the traced one (studies/pattern_orientation_check.hpp;
   /// results.json's orientation_check). Empty: no check. The default 22.5 degrees places the
   /// folds half-way between mirror lines of the gmsh_d4 mesh and on the other mirror family of
   /// the rings mesh.
   std::vector<double> orientation_check_turns = {22.5};
+  /// cone_branch and thickness_series: after the trace, the saved state nearest this phi_e
+  /// (rad, > 0) is turned by orientation_check_turns, relaxed and compared with the traced one
+  /// (results.json's orientation_* keys); unset ("auto"): no check.
+  std::optional<double> orientation_check_at;
 };
 
 /// Everything a branch-tracing program models. Plain data; see validate_scene for the ranges.

@@ -57,6 +57,15 @@ TEST(StudyResultsJson, HasEveryKeyInOrderWithItsValue) {
                                              "max_s4_defect_before_contact",
                                              "phi_symmetry_lost",
                                              "phi_last",
+                                             "orientation_phi",
+                                             "orientation_turn_deg",
+                                             "orientation_fold_angle_deg",
+                                             "orientation_energy_relative",
+                                             "orientation_s4_defect",
+                                             "orientation_chord_up",
+                                             "orientation_chord_down",
+                                             "orientation_energy_change_core",
+                                             "orientation_energy_change_outside",
                                              "completed",
                                              "end",
                                              "branch_csv",
@@ -77,6 +86,16 @@ TEST(StudyResultsJson, HasEveryKeyInOrderWithItsValue) {
   // Shortest round-trip form: the double comes back exactly, and is not padded to 17 digits.
   EXPECT_EQ(j["phi_branch"].get<double>(), 0.017151279982356354);
   EXPECT_NE(text.find("\"phi_kiss\": 7.0819,"), std::string::npos) << text;
+  EXPECT_TRUE(j["orientation_energy_relative"].is_null());  // no check
+  ConeBranchResults checked = full_results();
+  checked.orientation =
+      ConeBranchResults::Orientation{6.0, 22.5, 22.54, -0.009, 0.0058, 0.3667, 0.3664, -0.012, 0.005};
+  const nlohmann::json k = nlohmann::json::parse(cone_branch_results_json(checked));
+  EXPECT_EQ(k["orientation_phi"], 6.0);
+  EXPECT_EQ(k["orientation_fold_angle_deg"], 22.54);
+  EXPECT_EQ(k["orientation_energy_relative"], -0.009);
+  EXPECT_EQ(k["orientation_chord_down"], 0.3664);
+  EXPECT_EQ(k["orientation_energy_change_outside"], 0.005);
 }
 
 TEST(StudyResultsJson, ValuesThatDoNotApplyAreNull) {
