@@ -47,6 +47,12 @@ const std::vector<std::string> kColumns = {"phi_e",         "E_stretch",
 
 constexpr const char* kConeDir = "cone";
 
+/// Whether an S4 defect (relative to R) says the state is not S4-symmetric: above the scene's
+/// threshold, and below half the radius, beyond which the measure failed (fold directions not
+/// found on a turned state) rather than found a cone. One rule for the skewed search, the
+/// skewed samples and the orientation warning.
+bool breaks_s4(double defect, double threshold) { return defect > threshold && defect < 0.5; }
+
 std::string fixed(double v, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << v;
@@ -197,9 +203,12 @@ void EconeContactRun::set_up_contact() {
         why_not = std::string("no S4 defect (") + e.what() + ")";
         return false;
       }
-      if (defect > threshold) return true;
+      if (breaks_s4(defect, threshold)) return true;
       std::ostringstream text;
-      text << "keeps S4 (defect " << defect << "), the symmetric cone turned about its axis";
+      if (defect >= 0.5)
+        text << "no S4 defect (the measure gave " << defect << ", beyond half the radius)";
+      else
+        text << "keeps S4 (defect " << defect << "), the symmetric cone turned about its axis";
       why_not = text.str();
       return false;
     };
@@ -277,7 +286,7 @@ void EconeContactRun::check_orientation() {
     // here, and energy comparisons with it depend on the mesh (docs/results.md, "The apex core
     // against the mesh").
     if (t.converged && -e.energy_relative > options_.energy_margin &&
-        e.s4_defect > scene_.study.symmetry_threshold && e.s4_defect < 0.5) {
+        breaks_s4(e.s4_defect, scene_.study.symmetry_threshold)) {
       std::ostringstream w;
       w << "orientation: the pattern turned by " << e.turn_deg
         << " deg against the mesh relaxed at phi_e = " << fixed(check.phi_e, 4) << " to a state "
@@ -375,10 +384,10 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // A defect above half the radius is a measure that failed (fold directions not found on a
   // turned state), not a cone.
   const double threshold = scene_.study.symmetry_threshold;
-  const auto breaks_s4 = [threshold](double defect) { return defect > threshold && defect < 0.5; };
+  const auto is_skewed = [threshold](double defect) { return breaks_s4(defect, threshold); };
   std::vector<double> skewed_phi;  // of the samples that break S4
   for (std::size_t row = 0; row < skewed_->rows(); ++row)
-    if (breaks_s4(skewed_->value(row, "s4_defect")))
+    if (is_skewed(skewed_->value(row, "s4_defect")))
       skewed_phi.push_back(skewed_->value(row, "phi_e"));
   // A crossing counts if samples that break S4 lie within 0.05 of it on both sides.
   const auto on_skewed_cone = [&skewed_phi](double phi) {
@@ -413,7 +422,7 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   for (const BranchEnergySample& c : options_.symmetric_before)
     symmetric.push_back({c.parameter, c.energy, 0});
   add_rows(*symmetric_, symmetric, [](double) { return true; });
-  add_rows(*skewed_, skewed, breaks_s4);
+  add_rows(*skewed_, skewed, is_skewed);
   std::vector<double> special;
   for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
   if (const auto exchange = ground_state_exchange(symmetric, skewed, crossings, special)) {
