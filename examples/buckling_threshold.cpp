@@ -26,14 +26,6 @@ namespace {
 
 using namespace growshell;
 
-std::vector<double> parse_list(const std::string& text) {
-  std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(std::stod(item));
-  return out;
-}
-
 int run(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   examples::CommandLine cl(argc, argv);
@@ -45,7 +37,7 @@ int run(int argc, char** argv) {
               "  --rings: of the lattice family (rings of a disc, radial layers of a ring)");
     return 0;
   }
-  const std::vector<double> hs = parse_list(cl.text("--h", "0.04,0.02,0.01"));
+  const std::vector<double> hs = cl.number_list("--h", "0.04,0.02,0.01");
   const std::string family = cl.text("--mesh", "rings");
   Scene base = default_scene();
   apply_override(base, "mesh.family", family);
@@ -55,7 +47,7 @@ int run(int argc, char** argv) {
     if (!value.empty()) examples::require_family_reads(base, option, value);
   }
   const std::vector<double> resolutions =
-      lattice ? parse_list(cl.text("--rings", "12,24")) : parse_list(cl.text("--size-slope", "0.25,0.1"));
+      lattice ? cl.number_list("--rings", "12,24") : cl.number_list("--size-slope", "0.25,0.1");
   const int modes = cl.integer("--modes", 2);
   const std::string inner = cl.text("--inner-radius", "");
   const std::string out_path = cl.text("--out", "buckling_threshold.csv");

@@ -47,20 +47,6 @@ reference radius of the closest pair), then crosses (1 if the mid-surface passes
 itself outside the first band).
 )";
 
-std::vector<double> parse_list(const std::string& text) {
-  std::vector<double> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    const double v = std::stod(item, &used);
-    if (used != item.size() || !(v >= 0.0)) throw std::invalid_argument("--bands: bad radius '" + item + "'");
-    out.push_back(v);
-  }
-  if (out.empty()) throw std::invalid_argument("--bands: empty list");
-  return out;
-}
-
 struct Row {
   double phi = 0.0;
   std::vector<double> gap, radius;
@@ -74,7 +60,9 @@ int run(int argc, char** argv) {
   if (!command_line) return exit_code;
   const std::string dir = command_line->directory;
   examples::CommandLine& cl = command_line->options;
-  const std::vector<double> bands = parse_list(cl.text("--bands", "0,0.2,0.5,0.9"));
+  const std::vector<double> bands = cl.number_list("--bands", "0,0.2,0.5,0.9");
+  for (const double b : bands)
+    if (!(b >= 0.0)) throw std::invalid_argument("--bands: a band starts at a radius >= 0");
   const double distance_option = cl.number("--distance", -1.0);
   const double from = cl.number("--from", 0.0);
   const int samples = cl.integer("--samples", 2);

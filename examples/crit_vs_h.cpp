@@ -66,21 +66,6 @@ const char* kUsage = R"(usage: crit_vs_h [SCENE.json] [options]
   --out DIR           output directory (default out/crit_vs_h)
 )";
 
-std::vector<double> parse_list(const std::string& text) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    const double v = std::stod(item, &used);
-    if (used != item.size() || !(v > 0.0))
-      throw std::invalid_argument("--h: '" + item + "' is not a positive number");
-    values.push_back(v);
-  }
-  if (values.empty()) throw std::invalid_argument("--h needs at least one thickness");
-  return values;
-}
-
 std::string number_or_nan(double v) {
   if (!std::isfinite(v)) return "nan";
   std::ostringstream o;
@@ -95,7 +80,9 @@ int run(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return 0;
   }
-  const std::vector<double> thicknesses = parse_list(cl.text("--h", "0.04,0.03,0.02,0.015"));
+  const std::vector<double> thicknesses = cl.number_list("--h", "0.04,0.03,0.02,0.015");
+  for (const double h : thicknesses)
+    if (!(h > 0.0)) throw std::invalid_argument("--h: a thickness must be > 0");
   examples::apply_mesh_options(base, cl);
   const double phi_start = cl.number("--phi-start", 5.0);
   const double phi_contact_start = cl.number("--phi-contact-start", 0.0);

@@ -47,26 +47,6 @@ Writes RUN_DIR/orientation_check_phi<P>.csv (P as given), one row per turn:
   turn_free_index
 )";
 
-std::vector<double> parse_turns(const std::string& text) {
-  std::vector<double> turns;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double value = std::numeric_limits<double>::quiet_NaN();
-    try {
-      value = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !std::isfinite(value))
-      throw std::invalid_argument("--turns: '" + item + "' is not a number of degrees");
-    turns.push_back(value);
-  }
-  if (turns.empty()) throw std::invalid_argument("--turns lists no turn");
-  return turns;
-}
-
 int run(int argc, char** argv) {
   int exit_code = 0;
   auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
@@ -75,7 +55,7 @@ int run(int argc, char** argv) {
   examples::CommandLine& cl = command_line->options;
   const std::string phi_text = cl.text("--phi", "");
   const double phi = cl.number("--phi", std::numeric_limits<double>::quiet_NaN());
-  const std::vector<double> turns_deg = parse_turns(cl.text("--turns", "22.5"));
+  const std::vector<double> turns_deg = cl.number_list("--turns", "22.5");
   const double tolerance = cl.number("--tolerance", -1.0);
   cl.reject_unknown();
   if (!std::isfinite(phi)) throw std::invalid_argument("--phi is required (a finite excess angle)");

@@ -2,11 +2,14 @@
 // A small command-line reader for the example programs: `--name value` options with
 // defaults, typed access, and an error naming any unknown or malformed option.
 
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace growshell::examples {
 
@@ -49,6 +52,24 @@ class CommandLine {
     used_.insert(name);
     const auto it = values_.find(name);
     return it == values_.end() ? fallback : it->second;
+  }
+
+  /// A comma-separated list of finite numbers (e.g. --h 0.04,0.02), `fallback` if the option
+  /// is absent; throws naming the option for an item that is not one, or for an empty list.
+  /// The caller checks the range.
+  std::vector<double> number_list(const std::string& name, const std::string& fallback) {
+    std::vector<double> values;
+    std::stringstream in(text(name, fallback));
+    std::string item;
+    while (std::getline(in, item, ',')) {
+      char* end = nullptr;
+      const double v = std::strtod(item.c_str(), &end);
+      if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+        throw std::invalid_argument("option " + name + ": '" + item + "' is not a number");
+      values.push_back(v);
+    }
+    if (values.empty()) throw std::invalid_argument("option " + name + " lists no number");
+    return values;
   }
 
   /// Throws naming the first option that no accessor asked for.
