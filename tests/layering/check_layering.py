@@ -11,8 +11,9 @@ The order (lowest first) is RANKS below. Within libshell it is the order the fol
 includes actually have: subdivision uses mesh; assembly uses mesh, subdivision and energy;
 contact uses assembly and subdivision; analysis uses contact (the contact zones of a state),
 assembly, subdivision and mesh; io uses contact, assembly, energy, subdivision and mesh.
-Within solvers: stability uses newton; continuation uses stability and newton; contact uses
-all three. Folders that do not use each other today (energy and mesh/subdivision, analysis
+Within solvers: stability uses newton; dynamics (the damped-dynamics baseline) uses
+stability; continuation uses stability and newton; contact uses newton, stability and
+continuation. Folders that do not use each other today (energy and mesh/subdivision, analysis
 and io) are still ranked: the lower may not include the higher. Only the two kinds of
 program share a rank: programs/ and examples/ both sit on examples/support and may not
 include each other.
@@ -36,6 +37,7 @@ RANKS = [
     ["libshell/io"],
     ["solvers/newton"],
     ["solvers/stability"],
+    ["solvers/dynamics"],
     ["solvers/continuation"],
     ["solvers/contact"],
     ["studies"],
