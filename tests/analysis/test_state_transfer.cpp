@@ -13,6 +13,7 @@
 #include "libshell/analysis/state_transfer.hpp"
 #include "libshell/mesh/gmsh_disc_mesh.hpp"
 #include "libshell/mesh/ring_disc_mesh.hpp"
+#include "tests/support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
@@ -33,21 +34,15 @@ ShellModel gmsh_model() {
 
 Eigen::VectorXd affine_state(const ShellModel& model, const Eigen::Matrix3d& A,
                              const Eigen::Vector3d& b) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) x.segment<3>(3 * v) = A * x.segment<3>(3 * v) + b;
-  return x;
+  return test_support::map_reference(model, [&](const Eigen::Vector3d& X) { return A * X + b; });
 }
 
 /// A curved, sheared state given at the control points.
 Eigen::VectorXd curved_state(const ShellModel& model) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
-    const double X = x(3 * v), Y = x(3 * v + 1);
-    x(3 * v) += 0.1 * Y * Y;
-    x(3 * v + 1) -= 0.2 * X * Y;
-    x(3 * v + 2) = X * X + 0.5 * Y * Y + 0.3 * X * Y * Y;
-  }
-  return x;
+  return test_support::map_reference(model, [](const Eigen::Vector3d& X) {
+    return Eigen::Vector3d(X.x() + 0.1 * X.y() * X.y(), X.y() - 0.2 * X.x() * X.y(),
+                           X.x() * X.x() + 0.5 * X.y() * X.y() + 0.3 * X.x() * X.y() * X.y());
+  });
 }
 
 TEST(StateTransfer, AffineStatesAreCarriedExactlyBetweenFamilies) {
