@@ -530,8 +530,15 @@ std::optional<ConeBranchResults::Orientation> ConeBranchRun::check_orientation(d
   if (state.x.size() == 0) return std::nullopt;
   const ContactProxy proxy = make_contact_proxy(*model_, 1);
   const PatternOrientationCheckOptions o = scene_orientation_check_options(scene_, *model_, proxy);
-  const PatternOrientationCheck check =
-      check_pattern_orientation(*model_, proxy, state.x, state.parameter, pinned_, o);
+  PatternOrientationCheck check;
+  try {
+    check = check_pattern_orientation(*model_, proxy, state.x, state.parameter, pinned_, o);
+  } catch (const std::invalid_argument& e) {
+    // A state without fold directions (the flat sheet below the branch point) has no pattern
+    // to turn: the trace's results stand without the check.
+    say(line_printf("# no orientation check at phi_e = %.6f: %s", state.parameter, e.what()));
+    return std::nullopt;
+  }
   constexpr double kDeg = 180.0 / std::numbers::pi;
   std::optional<ConeBranchResults::Orientation> lowest;
   for (const TurnedPatternState& t : check.turned) {
