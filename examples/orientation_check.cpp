@@ -65,16 +65,10 @@ int run(int argc, char** argv) {
   const Scene scene = read_scene(dir + "/scene.json");
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const std::uint64_t fingerprint = scene_model_fingerprint(scene);
-  BranchSample state;
-  double distance = std::numeric_limits<double>::infinity();
-  for (const std::filesystem::path& file : saved_state_files(dir)) {
-    BranchSample s = load_branch_state(file.string(), model.dimension(), fingerprint);
-    if (std::abs(s.parameter - phi) < distance) {
-      distance = std::abs(s.parameter - phi);
-      state = std::move(s);
-    }
-  }
-  if (state.x.size() == 0) throw std::invalid_argument(dir + "/states holds no saved state");
+  const std::optional<BranchSample> nearest =
+      nearest_saved_state(dir, phi, model.dimension(), fingerprint);
+  if (!nearest) throw std::invalid_argument(dir + "/states holds no saved state");
+  const BranchSample& state = *nearest;
 
   Scene checked = scene;
   checked.study.orientation_check_turns = turns_deg;

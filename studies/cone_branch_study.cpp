@@ -518,16 +518,10 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
 /// study.orientation_check_at: the saved state nearest phi turned against the mesh, relaxed and
 /// compared (studies/pattern_orientation_check.hpp); the lowest turned state, if any converged.
 std::optional<ConeBranchResults::Orientation> ConeBranchRun::check_orientation(double phi) {
-  BranchSample state;
-  double distance = std::numeric_limits<double>::infinity();
-  for (const std::filesystem::path& file : saved_state_files(out_dir_)) {
-    BranchSample s = load_branch_state(file.string(), model_->dimension(), model_fingerprint_);
-    if (std::abs(s.parameter - phi) < distance) {
-      distance = std::abs(s.parameter - phi);
-      state = std::move(s);
-    }
-  }
-  if (state.x.size() == 0) return std::nullopt;
+  const std::optional<BranchSample> nearest =
+      nearest_saved_state(out_dir_, phi, model_->dimension(), model_fingerprint_);
+  if (!nearest) return std::nullopt;
+  const BranchSample& state = *nearest;
   const ContactProxy proxy = make_contact_proxy(*model_, 1);
   const PatternOrientationCheckOptions o = scene_orientation_check_options(scene_, *model_, proxy);
   PatternOrientationCheck check;

@@ -27,6 +27,7 @@
 #include "studies/ground_state_exchange.hpp"
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
+#include "studies/scene_contact_penalty.hpp"
 #include "studies/turn_free_stability_index.hpp"
 
 namespace growshell {
@@ -149,17 +150,8 @@ void EconeContactRun::set_up_contact() {
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
   proxy_ = std::make_unique<ContactProxy>(make_contact_proxy(*model_, 1));
 
+  options_.contact = scene_contact_penalty(scene_, *proxy_);
   ContactBranchOptions& c = options_.contact;
-  c.contact_distance = scene_.physics.contact_distance.value_or(h_);
-  c.exclusion_radius = resolved_exclusion_radius(scene_);
-  c.candidate_margin = h_;
-  c.stiffness =
-      st.penalty_stiffness_factor *
-      contact_stiffness_scale(scene_.material.youngs_modulus, h_, proxy_mean_edge_length(*proxy_));
-  c.violation_tolerance = 0.25 * h_;
-  // Rim vertices pinned on the reference come round next to the pinning axis as the cone grows
-  // (ContactBranchOptions::repin_above_condition).
-  c.repin_above_condition = 20.0;
   c.arclength.initial_step = st.contact_max_step / 4;
   c.arclength.max_step = st.contact_max_step;
   c.arclength.min_step = 1e-6;

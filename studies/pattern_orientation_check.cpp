@@ -9,9 +9,9 @@
 #include "core/objective_at_parameter.hpp"
 #include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/analysis/state_transfer.hpp"
-#include "libshell/contact/contact_penalty.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
+#include "studies/scene_contact_penalty.hpp"
 #include "studies/turn_free_stability_index.hpp"
 
 namespace growshell {
@@ -33,8 +33,9 @@ std::vector<char> core_elements(const ShellModel& model, double radius) {
 }
 
 /// The elastic energy (J) of the elements inside (first) and outside (second) the core.
-std::pair<double, double> split_energy(const ShellModel& model, const Eigen::VectorXd& x,
-                                       double phi_e, const std::vector<char>& inside) {
+std::pair<double, double> split_energy(const ShellModel& model,
+                                       const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e,
+                                       const std::vector<char>& inside) {
   double core = 0.0, outside = 0.0;
   for (Eigen::Index e = 0; e < model.num_elements(); ++e) {
     const ShellEnergyBreakdown part = model.element_breakdown(x, phi_e, e);
@@ -44,7 +45,8 @@ std::pair<double, double> split_energy(const ShellModel& model, const Eigen::Vec
 }
 
 double penalised_energy(const ShellModel& model, const ContactProxy& proxy,
-                        const Eigen::VectorXd& x, double phi_e, const ContactBranchOptions& o) {
+                        const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e,
+                        const ContactBranchOptions& o) {
   PenalizedShell total(model, proxy, near_penalty_pairs(proxy, x, o), o);
   return total.energy.evaluate(x, phi_e, nullptr, nullptr);
 }
@@ -59,13 +61,7 @@ PatternOrientationCheckOptions scene_orientation_check_options(const Scene& scen
   PatternOrientationCheckOptions o;
   for (const double t : scene.study.orientation_check_turns)
     o.turns.push_back(t * std::numbers::pi / 180.0);
-  o.contact.contact_distance = scene.physics.contact_distance.value_or(h);
-  o.contact.exclusion_radius = resolved_exclusion_radius(scene);
-  o.contact.candidate_margin = h;
-  o.contact.stiffness = scene.study.penalty_stiffness_factor *
-                        contact_stiffness_scale(Y, h, proxy_mean_edge_length(proxy));
-  o.contact.violation_tolerance = 0.25 * h;
-  o.contact.repin_above_condition = 20.0;
+  o.contact = scene_contact_penalty(scene, proxy);
   o.relaxation.gradient_tolerance = scene.study.tolerance * model.natural_force_scale();
   o.relaxation.decrement_tolerance = 1e-6 * Y * h * h * h;
   o.relaxation.max_step_inf_norm = 0.25 * h;
@@ -107,21 +103,20 @@ PatternOrientationCheck check_pattern_orientation(const ShellModel& model,
         "PatternOrientationCheckOptions::core_radius must be finite and > 0");
   const ContactBranchOptions& o = options.contact;
   const std::vector<char> inside = core_elements(model, options.core_radius);
-  const Eigen::VectorXd traced = x;
 
   PatternOrientationCheck out;
   out.phi_e = phi_e;
-  out.energy = penalised_energy(model, proxy, traced, phi_e, o);
-  const ConeSymmetry traced_symmetry = measure_cone_symmetry(model, traced);
+  out.energy = penalised_energy(model, proxy, x, phi_e, o);
+  const ConeSymmetry traced_symmetry = measure_cone_symmetry(model, x);
   out.s4_defect = traced_symmetry.s4.defect;
   out.fold_angle = traced_symmetry.folds.up_angle;
-  const auto [traced_core, traced_outside] = split_energy(model, traced, phi_e, inside);
+  const auto [traced_core, traced_outside] = split_energy(model, x, phi_e, inside);
   const double traced_penalty = out.energy - traced_core - traced_outside;
 
   for (const double turn : options.turns) {
     TurnedPatternState s;
     s.turn = turn;
-    s.x = transfer_state(model, traced, model, turn);
+    s.x = transfer_state(model, x, model, turn);
     const std::vector<Eigen::Index> state_pins = rigid_pins_for_state(model, s.x, pins, o);
     std::string why;
     s.converged = relax_with_contact(model, phi_e, proxy, s.x, state_pins, o, options.relaxation,

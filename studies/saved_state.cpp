@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -150,6 +151,18 @@ std::vector<std::filesystem::path> saved_state_files(const std::string& run_dir)
   std::vector<std::filesystem::path> files;
   for (auto& [index, path] : indexed) files.push_back(std::move(path));
   return files;
+}
+
+std::optional<BranchSample> nearest_saved_state(const std::string& run_dir, double phi_e,
+                                                Eigen::Index n,
+                                                std::uint64_t expected_fingerprint) {
+  std::optional<BranchSample> nearest;
+  for (const std::filesystem::path& file : saved_state_files(run_dir)) {
+    BranchSample s = load_branch_state(file.string(), n, expected_fingerprint);
+    if (!nearest || std::abs(s.parameter - phi_e) < std::abs(nearest->parameter - phi_e))
+      nearest = std::move(s);
+  }
+  return nearest;
 }
 
 }  // namespace growshell

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,5 +47,12 @@ BranchSample load_branch_state(const std::string& path, Eigen::Index n,
 /// order (by index); other files there (e.g. a temporary left by a killed run) are skipped.
 /// Throws std::filesystem::filesystem_error if RUN_DIR/states cannot be read.
 std::vector<std::filesystem::path> saved_state_files(const std::string& run_dir);
+
+/// The saved state of RUN_DIR whose phi_e lies nearest `phi_e` (the first in trace order on a
+/// tie), read as load_branch_state reads it; nothing if RUN_DIR/states holds none. Throws as
+/// saved_state_files and load_branch_state.
+std::optional<BranchSample> nearest_saved_state(const std::string& run_dir, double phi_e,
+                                                Eigen::Index n,
+                                                std::uint64_t expected_fingerprint = 0);
 
 }  // namespace growshell

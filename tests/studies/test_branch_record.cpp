@@ -166,6 +166,20 @@ TEST_F(BranchRecordTest, ContinueRefusesARecordThatDoesNotFit) {
   }
 }
 
+TEST_F(BranchRecordTest, NearestSavedStateIsTheOneWithTheNearestExcessAngle) {
+  fs::create_directories(path("states"));
+  EXPECT_FALSE(nearest_saved_state(dir_.string(), 1.0, 6).has_value());  // no state in it
+  {
+    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    for (const double phi : {0.5, 0.9, 1.3, 1.1}) record_sample(r, phi);
+  }
+  EXPECT_EQ(nearest_saved_state(dir_.string(), 1.0, 6)->parameter, 0.9);
+  EXPECT_EQ(nearest_saved_state(dir_.string(), 1.2, 6)->parameter, 1.1);
+  EXPECT_EQ(nearest_saved_state(dir_.string(), -3.0, 6)->parameter, 0.5);
+  EXPECT_EQ(nearest_saved_state(dir_.string(), 9.0, 6)->x, Eigen::VectorXd::Constant(6, 1.3));
+  EXPECT_THROW(nearest_saved_state(dir_.string(), 1.0, 5), std::runtime_error);  // another size
+}
+
 TEST(SavedState, NamesAndTheirIndices) {
   EXPECT_EQ(saved_state_name(12), "point_00012.state");
   EXPECT_EQ(saved_state_index("point_00012.state"), 12);
