@@ -5,10 +5,11 @@ usage: scripts/plot_econe_contact.py DIR
 
 DIR is an econe_contact study's output directory (growshell run). Top: E_b-hat against phi_e
 of the contact-free cone (cone/branch.csv), the symmetric branch with contact
-(symmetric/branch.csv) and the skewed branch (skewed/branch.csv), stable samples
+(symmetric/branch.csv), the skewed branch (skewed/branch.csv) and, where the study traced it,
+the cone turned against the mesh (turned/branch.csv), stable samples
 (n_negative = 0) solid and unstable ones dashed. Bottom: the total energy of each branch
 relative to the symmetric branch's at the same phi_e, (E - E_sym) / E_sym, so that the crossing
-shows. The special values of results.json (first contact, phi_e^crit by stability and by
+shows, and the turned cone's lies below it. The special values of results.json (first contact, phi_e^crit by stability and by
 energy) are marked with their phi_e. Needs matplotlib (Debian: python3-matplotlib).
 """
 import csv
@@ -68,10 +69,12 @@ def main():
     contact = base + ["E_penalty"]
     symmetric = read_rows(directory / "symmetric" / "branch.csv", contact)
     skewed = read_rows(directory / "skewed" / "branch.csv", contact)
+    turned = read_rows(directory / "turned" / "branch.csv", contact)
     if not cone and not symmetric:
         fail(f"{directory} has neither cone/branch.csv nor symmetric/branch.csv samples")
     # The skewed branch is written as traced: down from the relaxed state, then up from it.
     skewed.sort(key=lambda r: r["phi_e"])
+    turned.sort(key=lambda r: r["phi_e"])
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -84,7 +87,8 @@ def main():
     reference = cone + symmetric
     branches = [("cone without contact", cone, "tab:gray"),
                 ("symmetric, with contact", symmetric, "tab:blue"),
-                ("skewed, with contact", skewed, "tab:red")]
+                ("skewed, with contact", skewed, "tab:red"),
+                ("turned against the mesh, with contact", turned, "tab:orange")]
     for name, rows, color in branches:
         labelled = False
         for first, last, stable in stability_runs([r["n_negative"] for r in rows]):
@@ -107,24 +111,29 @@ def main():
     # (key, label, relation, colour): a phi_e^crit by energy met only at the skewed trace's
     # lowest sample is an upper bound.
     bound = results.get("phi_crit_energy_criterion") == "lowest_sample"
+    against = results.get("phi_crit_energy_reference", "symmetric")
     marks = [("phi_first_contact", "first contact", "=", "tab:green"),
              ("phi_crit_stability", r"$\phi_e^{crit}$ (stability)", "=", "tab:purple"),
-             ("phi_crit_energy", r"$\phi_e^{crit}$ (energy)", r"$\leq$" if bound else "=",
-              "black")]
+             ("phi_crit_energy", r"$\phi_e^{crit}$ (energy vs " + against + ")",
+              r"$\leq$" if bound else "=", "black")]
     for row, (key, label, relation, color) in enumerate(marks):
         value = results.get(key)
         if isinstance(value, (int, float)) and math.isfinite(value):
             for axis in (top, bottom):
                 axis.axvline(value, color=color, linestyle=":", linewidth=1.2)
+            # Labels of marks in the right half end at their line, so that they stay inside.
+            low, high = top.get_xlim()
+            right = value > 0.5 * (low + high)
             top.annotate(f"{label} {relation} {value:.4f}", (value, 1.0),
-                         xycoords=("data", "axes fraction"), xytext=(3, -12 - 12 * row),
-                         textcoords="offset points", fontsize=8, color=color)
+                         xycoords=("data", "axes fraction"),
+                         xytext=(-3 if right else 3, -12 - 12 * row), textcoords="offset points",
+                         ha="right" if right else "left", fontsize=8, color=color)
     mesh = results.get("mesh", {})
     slope = mesh.get("size_slope")
     size = f", size_slope {slope:g}" if slope is not None else ""
     top.set_title(f"e-cone through contact: h = {results.get('thickness'):g} m, "
                   f"{mesh.get('family')} mesh{size}, exclusion radius "
-                  f"{results.get('exclusion_radius', float('nan')) / results.get('thickness', 1):.3g} h")
+                  f"{results.get('exclusion_radius', float('nan')) / results.get('thickness', 1):.3g} h", fontsize=10)
     top.set_ylabel(r"normalised bending energy $\hat{E}_b$ (1/m$^2$)")
     bottom.set_ylabel(r"$(E - E_{sym}) / E_{sym}$, $E = E_s + E_b + E_{penalty}$")
     bottom.set_xlabel(r"excess angle $\phi_e$ (rad)")

@@ -1,6 +1,7 @@
 #include "studies/econe_contact_study.hpp"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -74,12 +75,19 @@ class EconeContactRun {
   void set_up_contact();
   void check_orientation();
   std::vector<BranchEnergySample> cone_energies(double below) const;
-  void on_sample(EconeBranch which, const ContactBranchSample& s);
-  void on_special(EconeBranch which, const SpecialPoint& sp);
+  /// Writes the sample to `record` (row and state) and the log; returns its S4 defect (NaN
+  /// for a state without fold directions).
+  double record_sample(const char* branch, BranchRecord& record, const ContactBranchSample& s);
+  void record_special(const char* branch, BranchRecord& record, const SpecialPoint& sp);
   void summarize(const EconeBranchResult& traced);
+  void trace_turned();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
   }
+  /// The symmetric branch's samples (the contact-free cone ahead of the trace with contact,
+  /// then the traced branch), and the skewed cone's samples that break S4.
+  std::vector<BranchStateSample> symmetric_samples() const;
+  std::vector<BranchStateSample> skewed_samples() const;
 
   Scene scene_;
   ExistingOutput existing_;
@@ -92,7 +100,12 @@ class EconeContactRun {
   std::unique_ptr<ContactProxy> proxy_;
   EconeBranchOptions options_;
   BranchSample start_;  ///< the cone's last state
-  std::unique_ptr<BranchRecord> symmetric_, skewed_;
+  std::unique_ptr<BranchRecord> symmetric_, skewed_, turned_;
+  /// The orientation check's lowest relaxed state that breaks S4 (empty if none): the start of
+  /// the turned branch.
+  Eigen::VectorXd turned_start_;
+  double turned_turn_deg_ = 0.0;
+  double turned_energy_relative_ = std::numeric_limits<double>::infinity();
   EconeContactResults results_;
 };
 
@@ -286,10 +299,16 @@ void EconeContactRun::check_orientation() {
         << " % below the traced symmetric cone that breaks S4 (defect " << fixed(e.s4_defect, 5)
         << "; energy change inside r = h " << fixed(e.energy_change_core, 6) << " J, outside "
         << fixed(e.energy_change_outside, 6)
-        << " J): phi_crit_energy and the skewed cone's energies compare with a symmetric branch "
-           "that the mesh's mirror lines hold";
+        << " J): the symmetric branch, traced with its folds on the mesh's mirror lines, is "
+           "not the sheet's lowest state; the study traces the turned state (turned/) and "
+           "measures phi_crit_energy against it";
       results_.warnings.push_back(w.str());
       say("# warning: " + w.str());
+      if (e.energy_relative < turned_energy_relative_) {
+        turned_start_ = t.x;
+        turned_turn_deg_ = e.turn_deg;
+        turned_energy_relative_ = e.energy_relative;
+      }
     }
     r.turned.push_back(std::move(e));
   }
@@ -313,7 +332,8 @@ std::vector<BranchEnergySample> EconeContactRun::cone_energies(double below) con
   return out;
 }
 
-void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s) {
+double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
+                                      const ContactBranchSample& s) {
   double gamma = std::numeric_limits<double>::quiet_NaN(), force = 0.0;
   if (!s.pairs.empty() && s.active_pairs > 0) {
     const ContactGapConstraints gaps(*proxy_, s.pairs, options_.contact.contact_distance,
@@ -334,16 +354,12 @@ void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s)
   } catch (const std::exception&) {
     // A state without fold directions has no S4 defect: NaN in the record.
   }
-  if (which == EconeBranch::Symmetric && std::isfinite(defect))
-    results_.max_s4_defect_symmetric =
-        std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
   char line[256];
   std::snprintf(line, sizeof line, "%-9s %9.5f %12.5e %12.5e %10.3e %8.4f %3d %7.4f %5d %9.2e %3d",
-                to_string(which), s.sample.parameter, s.stretching_energy, s.bending_energy,
+                branch, s.sample.parameter, s.stretching_energy, s.bending_energy,
                 s.penalty_energy, s.normalized_bending, s.sample.negative_eigenvalues, gamma,
                 s.active_pairs, defect, s.sample.corrector_iterations);
   say(line);
-  BranchRecord& r = record(which);
   r.append_row(
       {s.sample.parameter, s.stretching_energy, s.bending_energy, s.penalty_energy,
        s.normalized_bending, s.current_area, s.min_distance, static_cast<double>(s.active_pairs),
@@ -351,17 +367,45 @@ void EconeContactRun::on_sample(EconeBranch which, const ContactBranchSample& s)
        s.sample.arclength, static_cast<double>(s.sample.corrector_iterations), defect, up, down});
   r.save_state(s.sample, fingerprint_);
   r.commit();
+  return defect;
 }
 
-void EconeContactRun::on_special(EconeBranch which, const SpecialPoint& sp) {
+void EconeContactRun::record_special(const char* branch, BranchRecord& r, const SpecialPoint& sp) {
   std::string json = "{";
   json += special_point_event_fields(sp);
   json += "}";
-  record(which).add_event(json, special_point_summary(sp, to_string(which)));
-  say("# " + std::string(to_string(which)) + " branch: " + to_string(sp.kind) +
-      " at phi_e = " + fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) +
-      " -> " + std::to_string(sp.negative_after) + ")");
-  record(which).commit();
+  r.add_event(json, special_point_summary(sp, branch));
+  say("# " + std::string(branch) + " branch: " + to_string(sp.kind) + " at phi_e = " +
+      fixed(sp.parameter, 7) + " (negative " + std::to_string(sp.negative_before) + " -> " +
+      std::to_string(sp.negative_after) + ")");
+  r.commit();
+}
+
+/// The rows of `record` whose S4 defect `keep` accepts, as (phi_e, E_s + E_b + P, negative).
+std::vector<BranchStateSample> record_samples(const BranchRecord& record,
+                                              const std::function<bool(double)>& keep) {
+  std::vector<BranchStateSample> out;
+  for (std::size_t row = 0; row < record.rows(); ++row)
+    if (keep(record.value(row, "s4_defect")))
+      out.push_back({record.value(row, "phi_e"),
+                     record.value(row, "E_stretch") + record.value(row, "E_bend") +
+                         record.value(row, "E_penalty"),
+                     static_cast<int>(record.value(row, "n_negative"))});
+  return out;
+}
+
+std::vector<BranchStateSample> EconeContactRun::symmetric_samples() const {
+  std::vector<BranchStateSample> out;
+  for (const BranchEnergySample& c : options_.symmetric_before)
+    out.push_back({c.parameter, c.energy, 0});
+  for (const BranchStateSample& s : record_samples(*symmetric_, [](double) { return true; }))
+    out.push_back(s);
+  return out;
+}
+
+std::vector<BranchStateSample> EconeContactRun::skewed_samples() const {
+  const double threshold = scene_.study.symmetry_threshold;
+  return record_samples(*skewed_, [threshold](double d) { return breaks_s4(d, threshold); });
 }
 
 /// The key values of stages 2-4.
@@ -401,20 +445,8 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // The exchange of ground states: the symmetric branch (the cone without contact ahead of the
   // trace with contact; only the skewed branch's stability matters), the skewed cone's samples,
   // and the skewed branch's special points.
-  std::vector<BranchStateSample> symmetric, skewed;
-  const auto add_rows = [](const BranchRecord& record, std::vector<BranchStateSample>& out,
-                           const std::function<bool(double)>& keep) {
-    for (std::size_t row = 0; row < record.rows(); ++row)
-      if (keep(record.value(row, "s4_defect")))
-        out.push_back({record.value(row, "phi_e"),
-                       record.value(row, "E_stretch") + record.value(row, "E_bend") +
-                           record.value(row, "E_penalty"),
-                       static_cast<int>(record.value(row, "n_negative"))});
-  };
-  for (const BranchEnergySample& c : options_.symmetric_before)
-    symmetric.push_back({c.parameter, c.energy, 0});
-  add_rows(*symmetric_, symmetric, [](double) { return true; });
-  add_rows(*skewed_, skewed, is_skewed);
+  const std::vector<BranchStateSample> symmetric = symmetric_samples();
+  const std::vector<BranchStateSample> skewed = skewed_samples();
   std::vector<double> special;
   for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
   if (const auto exchange = ground_state_exchange(symmetric, skewed, crossings, special)) {
@@ -469,6 +501,120 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   r.end = !r.completed ? end : note.empty() ? "completed" : "completed (" + note + ")";
 }
 
+/// Stage 5: the orientation check's lowest turned state that breaks S4, traced with the
+/// contact penalty in the full space (its core is free of the mesh's mirror lines), down to
+/// where the skewed cone is followed and up to continuation.phi_max; compared with the
+/// symmetric branch and with the skewed cone.
+void EconeContactRun::trace_turned() {
+  fs::remove_all(fs::path(dir_) / "turned");  // stale once the branches are traced again
+  if (turned_start_.size() == 0) return;
+  const double phi0 = results_.orientation_check->phi_e;
+  turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Fresh);
+  say("# stage 5: the cone turned by " + fixed(turned_turn_deg_, 3) +
+      " deg against the mesh and relaxed at phi_e = " + fixed(phi0, 6) +
+      ", traced down and up in the full space");
+  ContactBranchOptions o = options_.contact;
+  o.symmetric_subspace = nullptr;  // it breaks the mirrors
+  o.arclength.parameter_min = options_.skewed_min;
+  o.arclength.parameter_max = options_.symmetric_end;
+  o.arclength.max_steps = options_.max_steps_per_branch;
+  const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
+  const double threshold = scene_.study.symmetry_threshold;
+  EconeTurnedBranch t;
+  t.start_phi = phi0;
+  t.turn_deg = turned_turn_deg_;
+  bool skip_start = false;  // the upward trace's corrected start is the downward trace's
+  const auto on_sample = [&](const ContactBranchSample& s) {
+    if (skip_start) {
+      skip_start = false;
+      return;
+    }
+    const double defect = record_sample("turned", *turned_, s);
+    if (breaks_s4(defect, threshold))
+      t.lowest_phi_breaking_s4 =
+          std::min(t.lowest_phi_breaking_s4.value_or(s.sample.parameter), s.sample.parameter);
+  };
+  const auto on_special = [&](const SpecialPoint& sp) { record_special("turned", *turned_, sp); };
+  const Eigen::VectorXd no_direction = Eigen::VectorXd::Zero(model_->dimension());
+  const ContactBranchTrace down = trace_contact_branch(*model_, *proxy_, turned_start_, phi0,
+                                                       no_direction, -1.0, pins, o, on_sample,
+                                                       on_special);
+  say("# turned branch, downwards: " + down.message);
+  skip_start = turned_->rows() > 0;
+  const ContactBranchTrace up = trace_contact_branch(*model_, *proxy_, turned_start_, phi0,
+                                                     no_direction, 1.0, pins, o, on_sample,
+                                                     on_special);
+  say("# turned branch, upwards: " + up.message);
+  t.end = "downwards: " + down.message + "; upwards: " + up.message;
+  // A trace that ended before its bound leaves the study incomplete, as the other stages do.
+  for (const auto& [name, trace] : {std::pair{"downwards", &down}, std::pair{"upwards", &up}}) {
+    if (trace->reached_bound) continue;
+    const std::string why = std::string("turned branch ") + name + ": " + trace->message;
+    results_.end = results_.completed ? why : results_.end + "; " + why;
+    results_.completed = false;
+  }
+
+  // Its samples by phi_e, against the symmetric branch and the skewed cone.
+  std::vector<BranchStateSample> turned = record_samples(*turned_, [](double) { return true; });
+  std::sort(turned.begin(), turned.end(),
+            [](const auto& a, const auto& b) { return a.phi_e < b.phi_e; });
+  std::vector<BranchStateSample> symmetric = symmetric_samples();
+  std::sort(symmetric.begin(), symmetric.end(),
+            [](const auto& a, const auto& b) { return a.phi_e < b.phi_e; });
+  if (!turned.empty()) {
+    t.lowest_phi = turned.front().phi_e;
+    t.highest_phi = turned.back().phi_e;
+  }
+  for (const BranchStateSample& s : turned) {
+    const std::optional<double> reference = branch_energy_at(symmetric, s.phi_e);
+    if (!reference) continue;
+    const double below = (*reference - s.energy) / *reference;
+    if (!t.largest_energy_below_symmetric || below > *t.largest_energy_below_symmetric) {
+      t.largest_energy_below_symmetric = below;
+      t.largest_energy_below_symmetric_phi = s.phi_e;
+    }
+  }
+  // The highest sample's row (the records keep rows in the order traced).
+  std::size_t top = 0;
+  for (std::size_t row = 1; row < turned_->rows(); ++row)
+    if (turned_->value(row, "phi_e") > turned_->value(top, "phi_e")) top = row;
+  if (turned_->rows() > 0) {
+    const double phi_top = turned_->value(top, "phi_e");
+    if (const auto reference = branch_energy_at(symmetric, phi_top))
+      t.top_energy_relative = (turned.back().energy - *reference) / *reference;
+    t.top_s4_defect = turned_->value(top, "s4_defect");
+    t.top_gamma = turned_->value(top, "gamma");
+  }
+  // Its first loss of stability by increasing phi_e: the special point between the last stable
+  // and the first unstable sample (that sample if none was located).
+  for (std::size_t k = 1; k < turned.size() && !t.phi_crit_stability; ++k) {
+    if (!(turned[k - 1].negative == 0 && turned[k].negative > 0)) continue;
+    t.phi_crit_stability = turned[k].phi_e;
+    for (const RecordedEvent& e : turned_->events())
+      if (e.phi_e >= turned[k - 1].phi_e && e.phi_e <= turned[k].phi_e) t.phi_crit_stability = e.phi_e;
+  }
+  std::vector<double> special;
+  for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
+  // phi_e^crit by energy is measured against the turned cone from here on: it is the lower of
+  // the two (the mesh's mirror lines hold the symmetric one), and the continuum does not tell
+  // the two orientations apart.
+  results_.phi_crit_energy_reference = "turned";
+  results_.phi_crit_energy.reset();
+  results_.phi_crit_energy_criterion.clear();
+  if (const auto exchange = ground_state_exchange(turned, skewed_samples(), {}, special)) {
+    results_.phi_crit_energy = exchange->phi_e;
+    results_.phi_crit_energy_criterion = exchange->criterion;
+  }
+  say("# turned branch: " +
+      (t.largest_energy_below_symmetric
+           ? "at most " + fixed(100.0 * *t.largest_energy_below_symmetric, 4) +
+                 " % below the symmetric branch"
+           : std::string("not compared with the symmetric branch")) +
+      "; a stable skewed cone below it from " +
+      (results_.phi_crit_energy ? fixed(*results_.phi_crit_energy, 6) : std::string("nowhere")));
+  results_.turned = std::move(t);
+}
+
 EconeContactResults EconeContactRun::run() {
   const auto started = std::chrono::steady_clock::now();
   fs::create_directories(dir_);
@@ -491,10 +637,13 @@ EconeContactResults EconeContactRun::run() {
   say(header);
   EconeBranchCallbacks callbacks;
   callbacks.on_sample = [this](EconeBranch which, const ContactBranchSample& s) {
-    on_sample(which, s);
+    const double defect = record_sample(to_string(which), record(which), s);
+    if (which == EconeBranch::Symmetric && std::isfinite(defect))
+      results_.max_s4_defect_symmetric =
+          std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
   };
   callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
-    on_special(which, sp);
+    record_special(to_string(which), record(which), sp);
   };
   callbacks.on_event = [this](const LocatedEvent& e) {
     std::ostringstream j;
@@ -508,6 +657,7 @@ EconeContactResults EconeContactRun::run() {
   const EconeBranchResult traced = trace_econe_branches(
       *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
   summarize(traced);
+  trace_turned();
 
   EconeContactResults& r = results_;
   r.thickness = h_;

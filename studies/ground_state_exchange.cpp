@@ -8,19 +8,6 @@ namespace {
 
 bool by_phi(const BranchStateSample& a, const BranchStateSample& b) { return a.phi_e < b.phi_e; }
 
-/// The first branch's energy at phi (linear between the bracketing samples), none outside it.
-std::optional<double> energy_at(const std::vector<BranchStateSample>& branch, double phi) {
-  for (std::size_t k = 0; k + 1 < branch.size(); ++k) {
-    const BranchStateSample& a = branch[k];
-    const BranchStateSample& b = branch[k + 1];
-    if (a.phi_e <= phi && phi <= b.phi_e) {
-      if (b.phi_e == a.phi_e) return a.energy;
-      return a.energy + (phi - a.phi_e) / (b.phi_e - a.phi_e) * (b.energy - a.energy);
-    }
-  }
-  return std::nullopt;
-}
-
 /// The first value of `candidates` in [lo, hi], if any.
 std::optional<double> first_in(const std::vector<double>& candidates, double lo, double hi) {
   std::optional<double> best;
@@ -45,6 +32,18 @@ std::optional<double> crossing_near(const std::vector<double>& crossings, double
 
 }  // namespace
 
+std::optional<double> branch_energy_at(const std::vector<BranchStateSample>& branch, double phi) {
+  for (std::size_t k = 0; k + 1 < branch.size(); ++k) {
+    const BranchStateSample& a = branch[k];
+    const BranchStateSample& b = branch[k + 1];
+    if (a.phi_e <= phi && phi <= b.phi_e) {
+      if (b.phi_e == a.phi_e) return a.energy;
+      return a.energy + (phi - a.phi_e) / (b.phi_e - a.phi_e) * (b.energy - a.energy);
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<GroundStateExchange> ground_state_exchange(
     std::vector<BranchStateSample> first, std::vector<BranchStateSample> second,
     const std::vector<double>& crossings, const std::vector<double>& second_special) {
@@ -54,7 +53,7 @@ std::optional<GroundStateExchange> ground_state_exchange(
   bool previous_stable = false;
   double previous_phi = 0.0;
   for (const BranchStateSample& s : second) {
-    const std::optional<double> reference = energy_at(first, s.phi_e);
+    const std::optional<double> reference = branch_energy_at(first, s.phi_e);
     if (!reference) continue;
     const double gap = s.energy - *reference;
     const bool stable = s.negative == 0;

@@ -24,6 +24,10 @@ struct BranchStateSample {
   int negative = 0;
 };
 
+/// The energy of `branch` (sorted by increasing phi_e) at `phi`, linear between the samples
+/// that bracket it; none outside its range.
+std::optional<double> branch_energy_at(const std::vector<BranchStateSample>& branch, double phi);
+
 /// Where the second branch takes over.
 struct GroundStateExchange {
   double phi_e = 0.0;

@@ -85,6 +85,7 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   j["phi_crit_energy"] = number_or_null(r.phi_crit_energy);
   j["phi_crit_energy_criterion"] =
       r.phi_crit_energy ? Json(r.phi_crit_energy_criterion) : Json(nullptr);
+  j["phi_crit_energy_reference"] = r.phi_crit_energy_reference;
   Json crossings = Json::array();
   for (const EconeCrossing& c : r.crossings)
     crossings.push_back({{"phi_e", number_or_null(c.phi_e)},
@@ -132,13 +133,35 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   } else {
     j["orientation_check"] = nullptr;
   }
+  if (r.turned) {
+    const EconeTurnedBranch& t = *r.turned;
+    j["turned"] = {
+        {"start_phi", number_or_null(t.start_phi)},
+        {"turn_deg", number_or_null(t.turn_deg)},
+        {"lowest_phi", number_or_null(t.lowest_phi)},
+        {"highest_phi", number_or_null(t.highest_phi)},
+        {"lowest_phi_breaking_s4", number_or_null(t.lowest_phi_breaking_s4)},
+        {"top_energy_relative", number_or_null(t.top_energy_relative)},
+        {"top_s4_defect", number_or_null(t.top_s4_defect)},
+        {"top_gamma", number_or_null(t.top_gamma)},
+        {"largest_energy_below_symmetric", number_or_null(t.largest_energy_below_symmetric)},
+        {"largest_energy_below_symmetric_phi",
+         number_or_null(t.largest_energy_below_symmetric_phi)},
+        {"phi_crit_stability", number_or_null(t.phi_crit_stability)},
+        {"end", t.end}};
+  } else {
+    j["turned"] = nullptr;
+  }
   j["warnings"] = r.warnings;
   j["completed"] = r.completed;
   j["end"] = r.end;
   j["cone_csv"] = "cone/branch.csv";
   j["symmetric_csv"] = "symmetric/branch.csv";
   j["skewed_csv"] = "skewed/branch.csv";
-  j["events"] = {"cone/events.json", "symmetric/events.json", "skewed/events.json"};
+  j["turned_csv"] = r.turned ? Json("turned/branch.csv") : Json(nullptr);
+  Json events = {"cone/events.json", "symmetric/events.json", "skewed/events.json"};
+  if (r.turned) events.push_back("turned/events.json");
+  j["events"] = events;
   j["wall_seconds"] = number_or_null(r.wall_seconds);
   return j.dump(2) + "\n";
 }

@@ -113,6 +113,26 @@ struct EconeOrientationCheck {
   std::vector<Turned> turned;
 };
 
+/// The cone with its fold pattern turned against the mesh: the orientation check's lowest
+/// relaxed state that breaks S4, traced with the contact penalty in the full space, down and
+/// up. Its apex core is free to skew, which the mirror lines hold on the symmetric branch, so
+/// it is the reference for energy comparisons that do not depend on how the folds lie on the
+/// mesh (docs/results.md, "The apex core against the mesh").
+struct EconeTurnedBranch {
+  double start_phi = 0.0;  ///< the orientation check's phi_e
+  double turn_deg = 0.0;   ///< the turn its start came from
+  /// The range of its samples, and the lowest phi_e of those that break S4.
+  std::optional<double> lowest_phi, highest_phi, lowest_phi_breaking_s4;
+  /// At its highest sample: (E_turned - E_symmetric) / E_symmetric (E = E_s + E_b + P, the
+  /// symmetric energy interpolated), the S4 defect and gamma (contact planes).
+  std::optional<double> top_energy_relative, top_s4_defect, top_gamma;
+  /// The largest (E_symmetric - E_turned) / E_symmetric over its samples, and where.
+  std::optional<double> largest_energy_below_symmetric, largest_energy_below_symmetric_phi;
+  /// Its first loss of stability (the negative count leaves 0), if any.
+  std::optional<double> phi_crit_stability;
+  std::string end;  ///< why each trace ended
+};
+
 /// An energy crossing of the symmetric and the skewed branch.
 struct EconeCrossing {
   double phi_e = 0.0;
@@ -144,6 +164,9 @@ struct EconeContactResults {
   /// "stabilised_below" or "lowest_sample").
   std::optional<double> phi_crit_energy;
   std::string phi_crit_energy_criterion;
+  /// The branch phi_crit_energy compares the skewed cone with: "turned" where the study traced
+  /// the turned cone (it is then the lower one), else "symmetric".
+  std::string phi_crit_energy_reference = "symmetric";
   /// Every energy crossing of the two branches, by phi_e, where the skewed trace is on the
   /// skewed cone (samples that break S4 within 0.05 on both sides).
   std::vector<EconeCrossing> crossings;
@@ -160,6 +183,8 @@ struct EconeContactResults {
   std::optional<EconeIpoptCheck> ipopt;
   /// The pattern turned against the mesh at the contact start (study.orientation_check_turns).
   std::optional<EconeOrientationCheck> orientation_check;
+  /// The turned cone traced (when the orientation check found a lower state breaking S4).
+  std::optional<EconeTurnedBranch> turned;
   /// Caveats on the values above, each a sentence naming what it concerns: e.g. a turned
   /// pattern that relaxed to a lower state breaking S4, so that the symmetric branch traced
   /// with its folds on the mesh's mirror lines is not the lowest state of the sheet there.
@@ -176,17 +201,20 @@ struct EconeContactResults {
 /// study ("econe_contact"), thickness, mesh {family, size_slope, elements, unknowns},
 /// contact_distance, exclusion_radius, penalty_stiffness, phi_branch, phi_max, eb_hat_max,
 /// phi_contact_start, phi_kiss, phi_kiss_criterion ("first_contact"), phi_first_contact,
-/// phi_crit_stability, phi_crit_energy, phi_crit_energy_criterion, crossings [{phi_e,
+/// phi_crit_stability, phi_crit_energy, phi_crit_energy_criterion, phi_crit_energy_reference,
+/// crossings [{phi_e,
 /// error_estimate, skewed_stable}],
 /// max_s4_defect_symmetric, skewed {found, message, search_at, energy_below_symmetric,
 /// lowest_phi, highest_phi}, ipopt ({converged, message, relative_energy_difference,
 /// state_difference_over_h, min_distance_over_h} or null), orientation_check ({phi_e,
 /// fold_angle_deg, s4_defect, core_radius, turned [{turn_deg, converged, message,
 /// fold_angle_deg, energy_relative, s4_defect, chord_up, chord_down, energy_change_core,
-/// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), warnings
-/// [strings], completed,
-/// end, cone_csv,
-/// symmetric_csv, skewed_csv, events (the three events.json), wall_seconds. Unset and
+/// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), turned
+/// ({start_phi, turn_deg, lowest_phi, highest_phi, lowest_phi_breaking_s4,
+/// top_energy_relative, top_s4_defect, top_gamma, largest_energy_below_symmetric,
+/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), warnings [strings], completed, end, cone_csv,
+/// symmetric_csv, skewed_csv, turned_csv (null without the turned branch), events (each
+/// branch's events.json), wall_seconds. Unset and
 /// non-finite values are null.
 std::string econe_contact_results_json(const EconeContactResults& results);
 

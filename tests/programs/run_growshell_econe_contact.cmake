@@ -19,11 +19,17 @@
 #    the energy falling inside r = h and rising outside, and results.json warns (measured
 #    -0.877 %, 0.0052 here; -0.871 %, 0.0054 on the default rings mesh and -0.778 %, 0.0045 on
 #    gmsh_d4 at 0.1; -0.75 % to -1.04 % at 6.0 over both families and four resolutions).
+#  - the turned state traced down and up (turned/): it breaks S4 from between 5.1 and 5.4
+#    (measured 5.268; 5.266 rings and 5.154 gmsh_d4 at size_slope 0.1), stays stable to 7.3
+#    (no loss of stability), lies below the symmetric branch by 0.6 % to 2 % at most (measured
+#    1.44 %; 0.92 % on both default meshes, at 6.19 and 5.89), still breaks S4 at its top
+#    (defect above 3e-3; measured 0.0089), and no stable skewed cone lies below it
+#    (phi_crit_energy null, measured against it: the skewed cone stays 0.23 % or more above).
 # The skewed branch's downward trace may end early below that crossing where the penalty's
 # pairs change (docs/guide/econe_contact.md, "Known limits"); the study then exits with 3 and
 # says so, which this test accepts, and nothing else. Its stability, and so phi_e^crit by
 # energy, hangs on a mode that is mostly the pattern's turn and is not asserted.
-# About 3 minutes (the orientation check about 20 s of it). Variables: PROGRAM, OUT.
+# About 3 minutes (the orientation check about 20 s of it, the turned branch about 40 s). Variables: PROGRAM, OUT.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 file(WRITE "${OUT}/econe.json"
@@ -92,6 +98,36 @@ endif()
 string(JSON warning GET "${results}" warnings 0)
 if(NOT warning MATCHES "^orientation: ")
   message(FATAL_ERROR "results.json does not warn about the orientation: ${warning}")
+endif()
+# The turned branch, and phi_crit_energy measured against it.
+string(JSON reference GET "${results}" phi_crit_energy_reference)
+string(JSON crit_energy_type TYPE "${results}" phi_crit_energy)
+if(NOT reference STREQUAL "turned" OR NOT crit_energy_type STREQUAL "NULL")
+  message(FATAL_ERROR "phi_crit_energy is measured against '${reference}' and is "
+                      "${crit_energy_type}, not null against the turned branch:\n${results}")
+endif()
+string(JSON turned_branch GET "${results}" turned)
+foreach(key lowest_phi_breaking_s4 largest_energy_below_symmetric top_s4_defect highest_phi)
+  string(JSON branch_${key} GET "${turned_branch}" ${key})
+endforeach()
+string(JSON turned_stability_type TYPE "${turned_branch}" phi_crit_stability)
+if(branch_lowest_phi_breaking_s4 LESS 5.1 OR branch_lowest_phi_breaking_s4 GREATER 5.4)
+  message(FATAL_ERROR "the turned branch breaks S4 from ${branch_lowest_phi_breaking_s4}, not "
+                      "from between 5.1 and 5.4:\n${turned_branch}")
+endif()
+if(NOT turned_stability_type STREQUAL "NULL" OR branch_highest_phi LESS 7.29)
+  message(FATAL_ERROR "the turned branch lost stability or ended below 7.29:\n${turned_branch}")
+endif()
+if(branch_largest_energy_below_symmetric LESS 0.006 OR
+   branch_largest_energy_below_symmetric GREATER 0.02)
+  message(FATAL_ERROR "the turned branch lies at most ${branch_largest_energy_below_symmetric} "
+                      "below the symmetric one, not 0.6 % to 2 %:\n${turned_branch}")
+endif()
+if(NOT branch_top_s4_defect GREATER 3e-3)
+  message(FATAL_ERROR "the turned branch keeps S4 at its top:\n${turned_branch}")
+endif()
+if(NOT EXISTS "${OUT}/run/turned/branch.csv")
+  message(FATAL_ERROR "no turned/branch.csv")
 endif()
 # Every skewed sample from 5.7 up breaks S4 (column s4_defect of skewed/branch.csv); below the
 # crossing the downward trace may reach the symmetric cone again.

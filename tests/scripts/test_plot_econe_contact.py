@@ -61,6 +61,17 @@ def main():
                   "econe_contact.png is written")
             check(not os.path.exists(os.path.join(d, ".econe_contact.png.tmp")),
                   "no temporary is left")
+            # With the turned branch (written as traced: down, then up) and phi_crit_energy
+            # measured against it.
+            branch(os.path.join(d, "turned", "branch.csv"),
+                   [(6.5, 0.734, 0), (5.2, 0.79, 0), (6.9, 0.731, 0), (7.3, 0.730, 0)])
+            results["phi_crit_energy_reference"] = "turned"
+            with open(os.path.join(d, "results.json"), "w") as f:
+                json.dump(results, f)
+            os.remove(figure)
+            with_turned = run_script("plot_econe_contact.py", d)
+            check(with_turned.returncode == 0 and os.path.isfile(figure),
+                  f"the figure with the turned branch is drawn: {with_turned.stderr!r}")
     check.finish()
 
 

@@ -69,17 +69,20 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "phi_crit_stability",
                                              "phi_crit_energy",
                                              "phi_crit_energy_criterion",
+                                             "phi_crit_energy_reference",
                                              "crossings",
                                              "max_s4_defect_symmetric",
                                              "skewed",
                                              "ipopt",
                                              "orientation_check",
+                                             "turned",
                                              "warnings",
                                              "completed",
                                              "end",
                                              "cone_csv",
                                              "symmetric_csv",
                                              "skewed_csv",
+                                             "turned_csv",
                                              "events",
                                              "wall_seconds"};
   EXPECT_EQ(keys, expected);
@@ -90,6 +93,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_EQ(j["phi_crit_energy"].get<double>(), 6.9);
   EXPECT_EQ(j["phi_crit_stability"].get<double>(), 7.03);
   EXPECT_EQ(j["phi_crit_energy_criterion"], "stabilised_below");
+  EXPECT_EQ(j["phi_crit_energy_reference"], "symmetric");
   ASSERT_EQ(j["crossings"].size(), 2u);
   EXPECT_EQ(j["crossings"][0]["phi_e"].get<double>(), 5.6);
   EXPECT_FALSE(j["crossings"][0]["skewed_stable"].get<bool>());
@@ -134,6 +138,44 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_FALSE(o["orientation_check"]["turned"][1]["converged"].get<bool>());
   EXPECT_TRUE(o["orientation_check"]["turned"][1]["state"].is_null());
   EXPECT_EQ(o["warnings"][0], "orientation: a turned state is lower");
+  // Without the turned branch: null, with no CSV and three events files.
+  EXPECT_TRUE(o["turned"].is_null());
+  EXPECT_TRUE(o["turned_csv"].is_null());
+  EXPECT_EQ(o["events"].size(), 3u);
+  // With it: its keys, its CSV and its events.
+  EconeTurnedBranch turned;
+  turned.start_phi = 6.55;
+  turned.turn_deg = 22.5;
+  turned.lowest_phi = 4.07;
+  turned.highest_phi = 7.3;
+  turned.lowest_phi_breaking_s4 = 5.25;
+  turned.top_energy_relative = -0.0066;
+  turned.largest_energy_below_symmetric = 0.0091;
+  turned.largest_energy_below_symmetric_phi = 6.6;
+  turned.end = "downwards: reached the parameter bound; upwards: reached the parameter bound";
+  oriented.turned = turned;
+  const auto t = nlohmann::ordered_json::parse(econe_contact_results_json(oriented));
+  std::vector<std::string> turned_keys;
+  for (auto it = t["turned"].begin(); it != t["turned"].end(); ++it) turned_keys.push_back(it.key());
+  const std::vector<std::string> expected_turned = {"start_phi",
+                                                    "turn_deg",
+                                                    "lowest_phi",
+                                                    "highest_phi",
+                                                    "lowest_phi_breaking_s4",
+                                                    "top_energy_relative",
+                                                    "top_s4_defect",
+                                                    "top_gamma",
+                                                    "largest_energy_below_symmetric",
+                                                    "largest_energy_below_symmetric_phi",
+                                                    "phi_crit_stability",
+                                                    "end"};
+  EXPECT_EQ(turned_keys, expected_turned);
+  EXPECT_EQ(t["turned"]["lowest_phi_breaking_s4"].get<double>(), 5.25);
+  EXPECT_EQ(t["turned"]["largest_energy_below_symmetric"].get<double>(), 0.0091);
+  EXPECT_TRUE(t["turned"]["phi_crit_stability"].is_null());
+  EXPECT_EQ(t["turned_csv"], "turned/branch.csv");
+  ASSERT_EQ(t["events"].size(), 4u);
+  EXPECT_EQ(t["events"][3], "turned/events.json");
   // Without phi_e^crit by energy, its criterion is null too.
   EconeContactResults none = sample_results();
   none.phi_crit_energy.reset();

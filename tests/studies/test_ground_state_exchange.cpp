@@ -72,5 +72,15 @@ TEST(GroundStateExchange, IsNoneWhileTheSecondBranchStaysAboveOrUnstable) {
   EXPECT_NEAR(x->phi_e, 5.5, 1e-12);
 }
 
+TEST(BranchEnergyAt, InterpolatesBetweenTheBracketingSamplesAndIsNoneOutside) {
+  const std::vector<BranchStateSample> branch = {{5.0, 1.0, 0}, {6.0, 3.0, 0}, {7.0, 2.0, 1}};
+  EXPECT_DOUBLE_EQ(*branch_energy_at(branch, 5.25), 1.5);
+  EXPECT_DOUBLE_EQ(*branch_energy_at(branch, 6.0), 3.0);
+  EXPECT_DOUBLE_EQ(*branch_energy_at(branch, 6.5), 2.5);
+  EXPECT_FALSE(branch_energy_at(branch, 4.99).has_value());
+  EXPECT_FALSE(branch_energy_at(branch, 7.01).has_value());
+  EXPECT_FALSE(branch_energy_at({}, 6.0).has_value());
+}
+
 }  // namespace
 }  // namespace growshell
