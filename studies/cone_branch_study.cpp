@@ -458,6 +458,11 @@ BranchTrace ConeBranchRun::trace_from_state() {
   ConeSubspaceChoice choice = subspace_for_start(subspace_, start.x, 0.1 * h_);
   if (!choice.note.empty()) say("# " + choice.note);
   subspace_ = std::move(choice.subspace);
+  // Resumed, the trace takes the step the interrupted one would have taken next, so that it
+  // goes on through the same samples (a state saved before the step was recorded has 0).
+  if (options_.start == ConeBranchStart::LastState && start.next_step >= arclength_.min_step &&
+      start.next_step <= arclength_.max_step)
+    arclength_.initial_step = start.next_step;
   return trace_cone(start.x, start.parameter, sign * start.tangent_state,
                     sign * start.tangent_parameter);
 }

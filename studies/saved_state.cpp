@@ -20,7 +20,9 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the binary state format is little-endian; a big-endian build needs byte swaps");
 
-constexpr std::string_view kMagic = "growshell-state 1\n";
+/// Version 2 adds the next step after dphi_e/ds; version 1 is still read (next step 0).
+constexpr std::string_view kMagic = "growshell-state 2\n";
+constexpr std::string_view kMagicVersion1 = "growshell-state 1\n";
 constexpr std::string_view kSuffixes[] = {".state", ".txt"};
 
 template <class T>
@@ -40,8 +42,9 @@ void put_vector(std::string& out, const Eigen::VectorXd& v) {
 }
 
 BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen::Index n,
-                          std::uint64_t expected_fingerprint) {
+                          std::uint64_t expected_fingerprint, bool has_next_step) {
   std::size_t at = kMagic.size();
+  static_assert(kMagic.size() == kMagicVersion1.size());
   auto take = [&](void* to, std::size_t size) {
     if (bytes.size() < at + size) throw std::runtime_error("saved point " + path + " is truncated");
     std::memcpy(to, bytes.data() + at, size);
@@ -55,6 +58,7 @@ BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen
   BranchSample s;
   take(&s.parameter, sizeof(double));
   take(&s.tangent_parameter, sizeof(double));
+  if (has_next_step) take(&s.next_step, sizeof(double));
   s.x.resize(n);
   s.tangent_state.resize(n);
   take(s.x.data(), static_cast<std::size_t>(n) * sizeof(double));
@@ -125,6 +129,7 @@ void save_branch_state(const std::string& path, const BranchSample& s,
   put(out, model_fingerprint);
   put(out, s.parameter);
   put(out, s.tangent_parameter);
+  put(out, s.next_step);
   put_vector(out, s.x);
   put_vector(out, s.tangent_state);
   put(out, fnv1a_64(out));
@@ -136,8 +141,9 @@ BranchSample load_branch_state(const std::string& path, Eigen::Index n,
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read saved point " + path);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (std::string_view(bytes).substr(0, kMagic.size()) == kMagic)
-    return parse_binary(path, bytes, n, expected_fingerprint);
+  const std::string_view head = std::string_view(bytes).substr(0, kMagic.size());
+  if (head == kMagic) return parse_binary(path, bytes, n, expected_fingerprint, true);
+  if (head == kMagicVersion1) return parse_binary(path, bytes, n, expected_fingerprint, false);
   return parse_text(path, bytes, n);
 }
 

@@ -1,15 +1,16 @@
 #pragma once
 /// \file
 /// One converged branch point on disk (a study's DIR/states/point_NNNNN.state): phi_e,
-/// dphi_e/ds, x and dx/ds, bit for bit, so that a trace can be resumed from it and
-/// post-processed exactly.
+/// dphi_e/ds, the next arclength step, x and dx/ds, bit for bit, so that a trace can be resumed
+/// from it exactly (the same steps as the trace that wrote it) and post-processed exactly.
 ///
-/// Format (`.state`): the line "growshell-state 1\n", then little-endian binary: int64 n (the
+/// Format (`.state`): the line "growshell-state 2\n", then little-endian binary: int64 n (the
 /// number of unknowns), uint64 the model fingerprint (scene_model_fingerprint, 0 = none),
-/// float64 phi_e, float64 dphi_e/ds, float64 x[n], float64 dx/ds[n], and uint64 the FNV-1a hash
-/// of every byte before it, so a truncated or damaged file is named as such. 16 n + 58 bytes:
-/// 2.7 times smaller than the text format of earlier versions (`.txt`: one number per line,
-/// 17 significant digits, no fingerprint), which is still read.
+/// float64 phi_e, float64 dphi_e/ds, float64 the next step (BranchSample::next_step),
+/// float64 x[n], float64 dx/ds[n], and uint64 the FNV-1a hash of every byte before it, so a
+/// truncated or damaged file is named as such. 16 n + 66 bytes. Version 1 ("growshell-state
+/// 1", without the next step) and the text format of earlier versions (`.txt`: one number per
+/// line, 17 significant digits, no fingerprint) are still read, with the next step 0.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -35,8 +36,8 @@ int saved_state_index(const std::string& file_name);
 void save_branch_state(const std::string& path, const BranchSample& sample,
                        std::uint64_t model_fingerprint = 0);
 
-/// Reads a saved state of a model with n unknowns (parameter, tangent, x; arclength, counts
-/// and iterations stay 0), in either format (told by its first line, not its name). Throws
+/// Reads a saved state of a model with n unknowns (parameter, tangent, next step, x;
+/// arclength, counts and iterations stay 0), in any of the formats (told by its first line, not its name). Throws
 /// std::runtime_error naming the file if it is missing, of another size, truncated, damaged
 /// (hash mismatch), or saved for another model: when both the file's fingerprint and
 /// `expected_fingerprint` are non-zero and differ (a text state has none).

@@ -203,6 +203,15 @@ Eigen::VectorXd critical_mode(const ParametrizedObjective& family, const Eigen::
 
 namespace {
 
+/// The step after `sample`, reached by a step of `step`: longer when its corrector took fewer
+/// iterations than the target, shorter when more (by a factor in [1/2, 2]), at most max_step.
+double next_step_after(double step, const BranchSample& sample, const ArclengthOptions& options) {
+  const double factor = std::clamp(
+      static_cast<double>(options.target_iterations) / std::max(1, sample.corrector_iterations),
+      0.5, 2.0);
+  return std::min(options.max_step, step * factor);
+}
+
 /// The trace proper; trace_branch_along wraps it to collect the solver's cost.
 BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen::VectorXd>& x0,
                                double lambda0,
@@ -244,6 +253,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     }
     out.last = std::move(start);
     out.start_converged = true;
+    out.last.next_step = options.initial_step;
     sample_done(out.last);
   }
   std::vector<double> event_values;
@@ -347,6 +357,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
           static_cast<int>(out.special_points.size()) >= options.max_special_points) {
         out.last = std::move(next);
         ++out.steps;
+        out.last.next_step = next_step_after(step, out.last, options);
         sample_done(out.last);
         out.reached_bound = true;
         out.message = "found max_special_points special points";
@@ -395,17 +406,14 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
 
     out.last = std::move(next);
     ++out.steps;
+    step = next_step_after(step, out.last, options);
+    out.last.next_step = step;
     sample_done(out.last);
     if (stop) {
       out.reached_bound = true;
       out.message = "stopped at event '" + out.events.back().kind + "'";
       return out;
     }
-    const double factor =
-        std::clamp(static_cast<double>(options.target_iterations) /
-                       std::max(1, out.last.corrector_iterations),
-                   0.5, 2.0);
-    step = std::min(options.max_step, step * factor);
   }
   out.reached_bound = true;
   out.message = "reached max_steps";

@@ -55,6 +55,10 @@ struct BranchSample {
   int corrector_iterations = 0;
   Eigen::VectorXd tangent_state;  ///< dx/ds
   double tangent_parameter = 0.0;  ///< dlambda/ds
+  /// The arclength step the trace takes from this sample (0: not known). A trace resumed from
+  /// the sample with it as ArclengthOptions::initial_step takes the same steps as the trace
+  /// that wrote it.
+  double next_step = 0.0;
 };
 
 /// A change of the negative eigenvalue count between two samples, located in lambda.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/content_hash.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/saved_state.hpp"
 #include "tests/studies/scratch_directory.hpp"
@@ -197,12 +198,14 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   s.x = Eigen::VectorXd::LinSpaced(5, -1e-300, 7.0);
   s.x(2) = std::numeric_limits<double>::denorm_min();
   s.tangent_state = Eigen::VectorXd::Constant(5, std::sqrt(2.0));
+  s.next_step = 0.0125;
   save_branch_state(path("a.state"), s, 42);
-  // header line, n, fingerprint, phi_e and its tangent, x and dx/ds, hash
-  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 8u + 16u + 2u * 5u * 8u + 8u);
+  // header line, n, fingerprint, phi_e, its tangent and the next step, x and dx/ds, hash
+  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 8u + 24u + 2u * 5u * 8u + 8u);
   const BranchSample r = load_branch_state(path("a.state"), 5, 42);
   EXPECT_EQ(r.parameter, s.parameter);
   EXPECT_EQ(r.tangent_parameter, s.tangent_parameter);
+  EXPECT_EQ(r.next_step, s.next_step);
   EXPECT_EQ(r.x, s.x);  // exact, not to a tolerance
   EXPECT_EQ(r.tangent_state, s.tangent_state);
   auto error_loading = [&](const std::string& file, Eigen::Index n) {
@@ -235,6 +238,19 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   EXPECT_NO_THROW(load_branch_state(path("a.state"), 5, 0));
   save_branch_state(path("b.state"), s);
   EXPECT_NO_THROW(load_branch_state(path("b.state"), 5, 43));
+  // Version 1 (no next step) is still read, with the next step 0: its bytes are version 2's
+  // without the step, under the version-1 header and with its own hash.
+  std::string v1 = bytes.substr(0, 18 + 8 + 8 + 16) + bytes.substr(18 + 8 + 8 + 24);
+  v1.resize(v1.size() - 8);
+  v1.replace(0, 18, "growshell-state 1\n");
+  const std::uint64_t hash = fnv1a_64(v1);
+  v1.append(reinterpret_cast<const char*>(&hash), sizeof hash);
+  write(path("v1.state"), v1);
+  const BranchSample old = load_branch_state(path("v1.state"), 5, 42);
+  EXPECT_EQ(old.next_step, 0.0);
+  EXPECT_EQ(old.parameter, s.parameter);
+  EXPECT_EQ(old.x, s.x);
+  EXPECT_EQ(old.tangent_state, s.tangent_state);
 }
 
 }  // namespace
