@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "heartbeat_log.hpp"
 #include "libshell/io/scene.hpp"
 #include "studies/parameter_sweep.hpp"
 #include "studies/scene_study.hpp"
@@ -280,7 +281,12 @@ int run_study(const RunCommand& c) {
   check_scene_study_directory(scene, c.existing);
   say("# growshell run: study " + study_kind_name(scene.study.kind) + ", scene " + c.scene_file +
       ", output " + dir);
-  const SceneStudyOutcome outcome = run_scene_study(scene, c.existing, say);
+  SceneStudyOutcome outcome;
+  {
+    // A line at least every 10 s, also while the study is busy in one long computation.
+    HeartbeatLog log;
+    outcome = run_scene_study(scene, c.existing, [&log](const std::string& line) { log(line); });
+  }
   if (scene.study.kind == StudyKind::ThicknessSeries)
     draw_figure("plot_thickness_series.py", dir, "thickness_series.png");
   else if (scene.study.kind == StudyKind::EconeContact)
@@ -308,7 +314,12 @@ int run_sweep(const RunCommand& c) {
   say("# growshell sweep: study " + study_kind_name(base.study.kind) + ", scene " +
       c.scene_file + ", " + std::to_string(sweep_points(c.parameters).size()) + " points, output " +
       c.out);
-  const ParameterSweep sweep = run_parameter_sweep(base, c.parameters, c.out, c.existing, say);
+  ParameterSweep sweep;
+  {
+    HeartbeatLog log;  // a line at least every 10 s
+    sweep = run_parameter_sweep(base, c.parameters, c.out, c.existing,
+                                [&log](const std::string& line) { log(line); });
+  }
   int completed = 0;
   for (const SweepPointResult& r : sweep.results)
     completed += r.status == SweepPointResult::Status::Completed;
