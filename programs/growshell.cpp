@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -273,6 +274,22 @@ Scene command_scene(const RunCommand& c) {
   return scene;
 }
 
+/// What to say when a study ran out of memory: the mesh's size (built again once the study's
+/// memory is freed), and what to change.
+std::string out_of_memory_message(const Scene& scene) {
+  std::string size = "the mesh";
+  try {
+    const TriangleMesh mesh = scene_mesh(scene);
+    size += " of " + std::to_string(mesh.vertices.rows()) + " vertices (about " +
+            std::to_string(3 * mesh.vertices.rows()) + " unknowns)";
+  } catch (const std::exception&) {
+    // Not even the mesh fits: say so without its size.
+  }
+  return "out of memory: " + size +
+         " is too large for this machine's memory; choose a coarser mesh (mesh.size_slope, "
+         "mesh.min_spacing, mesh.rings) or a machine with more memory";
+}
+
 int run_study(const RunCommand& c) {
   Scene scene = command_scene(c);
   if (!c.out.empty()) apply_override(scene, "output.directory", c.out);
@@ -285,7 +302,12 @@ int run_study(const RunCommand& c) {
   {
     // A line at least every 10 s, also while the study is busy in one long computation.
     HeartbeatLog log;
-    outcome = run_scene_study(scene, c.existing, [&log](const std::string& line) { log(line); });
+    try {
+      outcome =
+          run_scene_study(scene, c.existing, [&log](const std::string& line) { log(line); });
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error(out_of_memory_message(scene));
+    }
   }
   if (scene.study.kind == StudyKind::ThicknessSeries)
     draw_figure("plot_thickness_series.py", dir, "thickness_series.png");

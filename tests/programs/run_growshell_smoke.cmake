@@ -199,4 +199,17 @@ if(phi_last LESS 0.4 OR NOT phi_branch_after EQUAL phi_branch)
   message(FATAL_ERROR "results.json after --resume: phi_last ${phi_last}, phi_branch "
                       "${phi_branch_after} (was ${phi_branch})")
 endif()
+
+# A study that does not fit in memory (here 600 MB of address space for a mesh of 186k
+# vertices) is refused by name, with the mesh's size, and leaves no directory behind.
+set(oom "${OUT}/out_of_memory")
+execute_process(COMMAND sh -c "ulimit -v 600000 && exec \"$0\" run \"$1\" --out \"$2\" --set mesh.size_slope=0.01 --set thickness=0.002"
+                        "${PROGRAM}" "${OUT}/small.json" "${oom}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "out of memory: the mesh of [0-9]+ vertices \\(about [0-9]+ unknowns\\)")
+  message(FATAL_ERROR "a study too large for memory was not refused by name (${rc}):\n${log}\n${err}")
+endif()
+if(EXISTS "${oom}")
+  message(FATAL_ERROR "the study too large for memory left ${oom} behind")
+endif()
 message(STATUS "growshell run: phi_branch ${phi_branch}, ${n_before} rows, ${n_after} after --resume")
