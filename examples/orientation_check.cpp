@@ -1,7 +1,8 @@
 // orientation_check: does a traced cone depend on where its folds sit against the mesh?
 //
 // Reads a cone_branch study's directory (scene.json and states/, e.g. an econe_contact study's
-// DIR/cone or a sweep point), takes its saved state nearest --phi, turns the fold pattern over
+// DIR/cone or a sweep point) or a branch of an econe_contact study (DIR/symmetric, DIR/skewed,
+// DIR/turned: states/, with the scene one folder up), takes its saved state nearest --phi, turns the fold pattern over
 // the material by each of --turns, relaxes it at the same excess angle with the contact penalty
 // of the econe_contact study, and compares it with the traced state
 // (studies/pattern_orientation_check.hpp): the continuum gives every turn the same state.
@@ -36,7 +37,8 @@ const char* kUsage = R"(usage: orientation_check RUN_DIR [options]
   --turns A,B,...  turns of the fold pattern in degrees (default 22.5)
   --tolerance T    force tolerance of the relaxation relative to Y h^3 / R (default: the
                    scene's study.tolerance)
-RUN_DIR: a cone_branch study's directory (scene.json, states/). The penalty and the
+RUN_DIR: a cone_branch study's directory (scene.json, states/), or a branch of an
+econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned: states/, the scene in DIR). The penalty and the
 relaxation are the studies' (scene_orientation_check_options): contact distance and exclusion
 radius from the scene, stiffness study.penalty_stiffness_factor Y l^2 / h, margin h.
 Writes RUN_DIR/orientation_check_phi<P>.csv (P as given), one row per turn:
@@ -62,7 +64,12 @@ int run(int argc, char** argv) {
   if (!(tolerance > 0.0 && std::isfinite(tolerance)) && tolerance != -1.0)
     throw std::invalid_argument("--tolerance must be finite and > 0");
 
-  const Scene scene = read_scene(dir + "/scene.json");
+  // A branch of an econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned) has its scene
+  // one folder up.
+  const std::string scene_file = std::filesystem::exists(dir + "/scene.json")
+                                     ? dir + "/scene.json"
+                                     : (std::filesystem::path(dir) / ".." / "scene.json").string();
+  const Scene scene = read_scene(scene_file);
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const std::uint64_t fingerprint = scene_model_fingerprint(scene);
   const std::optional<BranchSample> nearest =
