@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -45,7 +46,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                         reinterpret_cast<const char*>(a.data() + a.size()),
                         reinterpret_cast<const char*>(b.data()));
     };
-    if (!same(s.x, t.x) || !same(s.tangent_state, t.tangent_state)) std::abort();
+    auto same_number = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    if (!same(s.x, t.x) || !same(s.tangent_state, t.tangent_state) ||
+        !same_number(s.parameter, t.parameter) ||
+        !same_number(s.tangent_parameter, t.tangent_parameter) ||
+        !same_number(s.next_step, t.next_step))
+      std::abort();
   }
   return 0;
 }

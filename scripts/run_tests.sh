@@ -10,3 +10,5 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGROWSHELL_BUILD_TESTS=ON \
   -DGROWSHELL_BUILD_BENCHMARKS=ON
 cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j2
+# The fast unit tests under ASan + UBSan, and each libFuzzer target for 30 s (clang, build-fuzz/).
+bash scripts/run_sanitizers.sh

@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev   # JSON parameter and result files
   gmsh libgmsh-dev     # well-kept unstructured mesh generator: the second disc mesh family, sharing no structure with the ring mesh
   libgtest-dev         # unit tests
+  clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes: scripts/run_sanitizers.sh (fuzz preset)
   libbenchmark-dev     # micro-benchmarks
   libopenmpi-dev openmpi-bin  # mpirun -n K growshell sweep: the sweep's points spread over MPI ranks (programs/ only)
   python3-matplotlib   # figures: scripts/plot_study.py (growshell run draws DIR/eb_hat.png), render_surface.py
