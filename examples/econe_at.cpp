@@ -142,10 +142,18 @@ int run(int argc, char** argv) {
   };
   GrowthPathOptions path_options;
   path_options.max_step = max_step;
+  // A step that finds no stable state is said at once, so that a struggling path never falls
+  // silent while its steps shrink.
+  const auto on_failed_step = [](const GrowthPathFailedStep& f) {
+    std::printf("# step %.6f -> %.6f failed: %s; %s\n", f.from, f.to, f.why.c_str(),
+                f.next_step > 0.0 ? ("trying a step of " + std::to_string(f.next_step)).c_str()
+                                  : "giving up (step below its minimum)");
+    std::fflush(stdout);
+  };
   const GrowthPathResult path = grow_along_path(
       model, x_start, 0.0, phi_target, pinned, newton,
       [&](int) { return disc_perturbation(model, amplitude, rng, 1.0); }, path_options, on_point,
-      log_iteration);
+      log_iteration, on_failed_step);
   const Eigen::VectorXd& x = path.last.x;
   if (!path.reached_target) {
     write_vtu(out_dir + "/last_converged.vtu", shell_snapshot(model, x, path.last.excess_angle, 2));

@@ -33,6 +33,14 @@ struct GrowthPathPoint {
   int saddle_escapes = 0;     ///< perturbations needed to leave a saddle
 };
 
+/// A step of grow_along_path that found no stable equilibrium, as it is given up: from the last
+/// point's excess angle to `to`, why, and the step tried next (0 if none: the path ends).
+struct GrowthPathFailedStep {
+  double from = 0.0, to = 0.0;
+  std::string why;
+  double next_step = 0.0;
+};
+
 /// Outcome of grow_along_path. `last` always holds the last converged point (the start if no
 /// step converged), so no computed result is lost when the path ends early.
 struct GrowthPathResult {
@@ -47,8 +55,10 @@ struct GrowthPathResult {
 /// (either direction). At every step's excess angle a predictor is corrected by `newton`
 /// (minimising the model at that angle) with `fixed_dofs` held, and a converged state that is not a strict
 /// minimum (see hessian_is_positive_definite) is displaced by `perturb(attempt)` (a vector of
-/// the model's dimension) and re-minimised. Every accepted point is passed to `on_point`.
-/// A failing step is halved; the path ends, keeping its last point, below options.min_step.
+/// the model's dimension) and re-minimised. Every accepted point is passed to `on_point`, every
+/// failed step to `on_failed_step` (so that a caller can report a path that is struggling
+/// rather than fall silent). A failing step is halved; the path ends, keeping its last point,
+/// below options.min_step.
 GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x_start,
                                  double phi_start, double phi_target,
                                  const std::vector<Eigen::Index>& fixed_dofs,
@@ -56,7 +66,8 @@ GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const
                                  const std::function<Eigen::VectorXd(int attempt)>& perturb,
                                  const GrowthPathOptions& options = {},
                                  const std::function<void(const GrowthPathPoint&)>& on_point = {},
-                                 const std::function<void(const NewtonIterate&)>& on_iterate = {});
+                                 const std::function<void(const NewtonIterate&)>& on_iterate = {},
+                                 const std::function<void(const GrowthPathFailedStep&)>& on_failed_step = {});
 
 /// Equilibrium tangent dx/d(phi_e) = -H^-1 d(gradient)/d(phi_e) at (x, phi_e) with `fixed_dofs`
 /// held (metres per radian). Returns an empty vector where H is not positive definite.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/objective_at_parameter.hpp"
 #include "libshell/analysis/rim_folds.hpp"
@@ -129,11 +130,23 @@ TEST(GrowthPath, RejectsBadOptionsAndKeepsTheStartWhenNothingConverges) {
   po.max_step = 1.0;
   const Eigen::VectorXd x0 =
       scene.model.reference_positions() + perturbation(scene.model, 1e-2);
+  std::vector<GrowthPathFailedStep> failed;
   const GrowthPathResult path = grow_along_path(
       scene.model, x0, 0.0, 1.0, scene.pinned, newton,
-      [&](int) { return perturbation(scene.model, 1e-3); }, po);
+      [&](int) { return perturbation(scene.model, 1e-3); }, po, {}, {},
+      [&](const GrowthPathFailedStep& f) { failed.push_back(f); });
   EXPECT_FALSE(path.reached_target);
   EXPECT_FALSE(path.message.empty());
+  // Every failed step is reported as it is given up: the step of 1 halved to 0.5, then the
+  // end (no next step) with the reason the path's message gives.
+  ASSERT_EQ(failed.size(), 2u);
+  EXPECT_EQ(failed[0].from, 0.0);
+  EXPECT_EQ(failed[0].to, 1.0);
+  EXPECT_EQ(failed[0].next_step, 0.5);
+  EXPECT_FALSE(failed[0].why.empty());
+  EXPECT_EQ(failed[1].to, 0.5);
+  EXPECT_EQ(failed[1].next_step, 0.0);
+  EXPECT_NE(path.message.find(failed[1].why), std::string::npos);
   EXPECT_EQ(path.last.x, x0);
   EXPECT_EQ(path.last.excess_angle, 0.0);
   po.min_step = 2.0;
