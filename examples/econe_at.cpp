@@ -5,6 +5,7 @@
 // search) finds the equilibrium from a tangent predictor (grow_along_path). A converged state
 // whose Hessian is not positive definite is a saddle (the flat disc past its buckling
 // threshold): it is perturbed again and re-minimised, so each reported state is stable.
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -123,7 +124,9 @@ int run(int argc, char** argv) {
   steps.precision(12);
   std::printf("%8s %13s %13s %11s %6s %5s\n", "phi_e", "E_stretch", "E_bend", "Eb_hat", "iters",
               "folds");
+  auto last_line = std::chrono::steady_clock::now();  // of the last line printed
   const auto on_point = [&](const GrowthPathPoint& p) {
+    last_line = std::chrono::steady_clock::now();
     const ShellEnergyBreakdown parts = model.energy_breakdown(p.x, p.excess_angle);
     const int folds = analyze_rim_folds(model, p.x).folds;
     std::printf("%8.4f %13.6e %13.6e %11.6f %6d %5d%s\n", p.excess_angle, parts.stretching,
@@ -134,11 +137,15 @@ int run(int argc, char** argv) {
           << p.newton_iterations << ',' << folds << ',' << p.saddle_escapes << '\n';
     steps.flush();
   };
-  const auto log_iteration = [verbose](const NewtonIterate& it) {
-    if (verbose)
-      std::printf("    newton %3d  E %.12e  |g| %.3e  alpha %.3g  |dx| %.3e  shift %.3e\n",
-                  it.iteration, it.energy, it.gradient_inf_norm, it.step_length, it.step_inf_norm,
-                  it.shift);
+  // Every Newton iterate with --verbose; without it, one at least every 10 s while a step is
+  // busy, so that the program is never silent for longer.
+  const auto log_iteration = [verbose, &last_line](const NewtonIterate& it) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!verbose && now - last_line < std::chrono::seconds(10)) return;
+    last_line = now;
+    std::printf("    newton %3d  E %.12e  |g| %.3e  alpha %.3g  |dx| %.3e  shift %.3e\n",
+                it.iteration, it.energy, it.gradient_inf_norm, it.step_length, it.step_inf_norm,
+                it.shift);
   };
   GrowthPathOptions path_options;
   path_options.max_step = max_step;
