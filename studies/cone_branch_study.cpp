@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "libshell/analysis/rim_folds.hpp"
 #include "libshell/io/shell_snapshot.hpp"
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/phase_condition_trace.hpp"
@@ -155,6 +156,14 @@ ConeBranchRun::ConeBranchRun(const Scene& scene, const ConeBranchStudyOptions& o
   // (e.g. a missing mesh.file), the recorded scene and the saved state to resume from.
   model_ = std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_));
   model_fingerprint_ = scene_model_fingerprint(scene_);
+  // Every sample counts its folds on the rim: a rim too coarse for that is refused now, not
+  // after the flat branch has been traced.
+  try {
+    (void)analyze_rim_folds(*model_, model_->reference_positions());
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("the mesh is too coarse to count the cone's folds: ") +
+                                e.what() + " (refine it: mesh.size_slope or mesh.rings)");
+  }
   if (options_.start == ConeBranchStart::LastState) {
     if (!BranchRecord::exists(out_dir_)) {
       options_.start = ConeBranchStart::Flat;

@@ -92,7 +92,10 @@ endif()
 # A bad study key is refused by name and writes nothing, even with --overwrite.
 file(WRITE "${OUT}/bad.json" "{\"thickness\": 0.04, \"study\": {\"tolerance\": -1}}\n")
 file(WRITE "${OUT}/unknown.json" "{\"study\": {\"kind\": \"cone\"}}\n")
-foreach(bad IN ITEMS "bad.json;study.tolerance = -1" "unknown.json;study.kind")
+# A mesh whose rim cannot resolve the fold count (16 vertices): refused before the flat trace.
+file(WRITE "${OUT}/coarse.json" "{\"thickness\": 0.04, \"mesh\": {\"size_slope\": 0.3}}\n")
+foreach(bad IN ITEMS "bad.json;study.tolerance = -1" "unknown.json;study.kind"
+                     "coarse.json;too coarse to count the cone's folds: rim has 16 vertices")
   list(GET bad 0 scene)
   list(GET bad 1 key)
   execute_process(COMMAND "${PROGRAM}" run "${OUT}/${scene}" --out "${OUT}/bad"
