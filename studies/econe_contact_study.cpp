@@ -88,6 +88,8 @@ class EconeContactRun {
   /// then the traced branch), and the skewed cone's samples that break S4.
   std::vector<BranchStateSample> symmetric_samples() const;
   std::vector<BranchStateSample> skewed_samples() const;
+  /// The phi_e of the skewed branch's special points (where its stability changes).
+  std::vector<double> skewed_special_points() const;
 
   Scene scene_;
   ExistingOutput existing_;
@@ -408,6 +410,12 @@ std::vector<BranchStateSample> EconeContactRun::skewed_samples() const {
   return record_samples(*skewed_, [threshold](double d) { return breaks_s4(d, threshold); });
 }
 
+std::vector<double> EconeContactRun::skewed_special_points() const {
+  std::vector<double> out;
+  for (const RecordedEvent& e : skewed_->events()) out.push_back(e.phi_e);
+  return out;
+}
+
 /// The key values of stages 2-4.
 void EconeContactRun::summarize(const EconeBranchResult& t) {
   EconeContactResults& r = results_;
@@ -419,18 +427,13 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // skewed branch, or where pairs change): only its samples that break S4 are the skewed cone.
   // A defect above half the radius is a measure that failed (fold directions not found on a
   // turned state), not a cone.
-  const double threshold = scene_.study.symmetry_threshold;
-  const auto is_skewed = [threshold](double defect) { return breaks_s4(defect, threshold); };
-  std::vector<double> skewed_phi;  // of the samples that break S4
-  for (std::size_t row = 0; row < skewed_->rows(); ++row)
-    if (is_skewed(skewed_->value(row, "s4_defect")))
-      skewed_phi.push_back(skewed_->value(row, "phi_e"));
+  const std::vector<BranchStateSample> skewed = skewed_samples();
   // A crossing counts if samples that break S4 lie within 0.05 of it on both sides.
-  const auto on_skewed_cone = [&skewed_phi](double phi) {
+  const auto on_skewed_cone = [&skewed](double phi) {
     bool below = false, above = false;
-    for (double p : skewed_phi) {
-      below = below || (p <= phi && p >= phi - 0.05);
-      above = above || (p >= phi && p <= phi + 0.05);
+    for (const BranchStateSample& s : skewed) {
+      below = below || (s.phi_e <= phi && s.phi_e >= phi - 0.05);
+      above = above || (s.phi_e >= phi && s.phi_e <= phi + 0.05);
     }
     return below && above;
   };
@@ -445,11 +448,8 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   // The exchange of ground states: the symmetric branch (the cone without contact ahead of the
   // trace with contact; only the skewed branch's stability matters), the skewed cone's samples,
   // and the skewed branch's special points.
-  const std::vector<BranchStateSample> symmetric = symmetric_samples();
-  const std::vector<BranchStateSample> skewed = skewed_samples();
-  std::vector<double> special;
-  for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
-  if (const auto exchange = ground_state_exchange(symmetric, skewed, crossings, special)) {
+  if (const auto exchange =
+          ground_state_exchange(symmetric_samples(), skewed, crossings, skewed_special_points())) {
     r.phi_crit_energy = exchange->phi_e;
     r.phi_crit_energy_criterion = exchange->criterion;
   }
@@ -461,9 +461,9 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
       r.skewed_energy_below_symmetric =
           (t.symmetric_top_energy - t.skewed_relaxed_energy) / t.symmetric_top_energy;
   }
-  for (double phi : skewed_phi) {
-    r.skewed_lowest_phi = std::min(r.skewed_lowest_phi.value_or(phi), phi);
-    r.skewed_highest_phi = std::max(r.skewed_highest_phi.value_or(phi), phi);
+  for (const BranchStateSample& s : skewed) {
+    r.skewed_lowest_phi = std::min(r.skewed_lowest_phi.value_or(s.phi_e), s.phi_e);
+    r.skewed_highest_phi = std::max(r.skewed_highest_phi.value_or(s.phi_e), s.phi_e);
   }
   if (t.ipopt_checked) {
     EconeIpoptCheck check;
@@ -554,17 +554,17 @@ void EconeContactRun::trace_turned() {
     results_.completed = false;
   }
 
-  // Its samples by phi_e, against the symmetric branch and the skewed cone.
-  std::vector<BranchStateSample> turned = record_samples(*turned_, [](double) { return true; });
-  std::sort(turned.begin(), turned.end(),
-            [](const auto& a, const auto& b) { return a.phi_e < b.phi_e; });
+  // Its samples in the order traced (row k of the record) and by phi_e, against the symmetric
+  // branch and the skewed cone.
+  const auto by_phi = [](const BranchStateSample& a, const BranchStateSample& b) {
+    return a.phi_e < b.phi_e;
+  };
+  const std::vector<BranchStateSample> rows =
+      record_samples(*turned_, [](double) { return true; });
+  std::vector<BranchStateSample> turned = rows;
+  std::sort(turned.begin(), turned.end(), by_phi);
   std::vector<BranchStateSample> symmetric = symmetric_samples();
-  std::sort(symmetric.begin(), symmetric.end(),
-            [](const auto& a, const auto& b) { return a.phi_e < b.phi_e; });
-  if (!turned.empty()) {
-    t.lowest_phi = turned.front().phi_e;
-    t.highest_phi = turned.back().phi_e;
-  }
+  std::sort(symmetric.begin(), symmetric.end(), by_phi);
   for (const BranchStateSample& s : turned) {
     const std::optional<double> reference = branch_energy_at(symmetric, s.phi_e);
     if (!reference) continue;
@@ -574,14 +574,14 @@ void EconeContactRun::trace_turned() {
       t.largest_energy_below_symmetric_phi = s.phi_e;
     }
   }
-  // The highest sample's row (the records keep rows in the order traced).
-  std::size_t top = 0;
-  for (std::size_t row = 1; row < turned_->rows(); ++row)
-    if (turned_->value(row, "phi_e") > turned_->value(top, "phi_e")) top = row;
-  if (turned_->rows() > 0) {
-    const double phi_top = turned_->value(top, "phi_e");
-    if (const auto reference = branch_energy_at(symmetric, phi_top))
-      t.top_energy_relative = (turned.back().energy - *reference) / *reference;
+  if (!rows.empty()) {
+    t.lowest_phi = turned.front().phi_e;
+    t.highest_phi = turned.back().phi_e;
+    // The highest sample, with its record row's S4 defect and gamma.
+    const auto top = static_cast<std::size_t>(
+        std::max_element(rows.begin(), rows.end(), by_phi) - rows.begin());
+    if (const auto reference = branch_energy_at(symmetric, rows[top].phi_e))
+      t.top_energy_relative = (rows[top].energy - *reference) / *reference;
     t.top_s4_defect = turned_->value(top, "s4_defect");
     t.top_gamma = turned_->value(top, "gamma");
   }
@@ -593,15 +593,14 @@ void EconeContactRun::trace_turned() {
     for (const RecordedEvent& e : turned_->events())
       if (e.phi_e >= turned[k - 1].phi_e && e.phi_e <= turned[k].phi_e) t.phi_crit_stability = e.phi_e;
   }
-  std::vector<double> special;
-  for (const RecordedEvent& e : skewed_->events()) special.push_back(e.phi_e);
   // phi_e^crit by energy is measured against the turned cone from here on: it is the lower of
   // the two (the mesh's mirror lines hold the symmetric one), and the continuum does not tell
   // the two orientations apart.
   results_.phi_crit_energy_reference = "turned";
   results_.phi_crit_energy.reset();
   results_.phi_crit_energy_criterion.clear();
-  if (const auto exchange = ground_state_exchange(turned, skewed_samples(), {}, special)) {
+  if (const auto exchange =
+          ground_state_exchange(turned, skewed_samples(), {}, skewed_special_points())) {
     results_.phi_crit_energy = exchange->phi_e;
     results_.phi_crit_energy_criterion = exchange->criterion;
   }
