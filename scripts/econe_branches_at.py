@@ -12,17 +12,23 @@ The symmetric branch below its first sample with contact is the contact-free con
 (cone/branch.csv). Values are interpolated linearly in phi_e between the two samples around
 PHI (the negative count is the nearer sample's); "—" where a branch does not reach PHI. A
 branch traced both ways (down from its start, then up) is sorted by phi_e first; where it
-passes a phi_e twice (a fold), the first pair of samples around it counts.
+passes a phi_e twice (a fold), the first pair of samples around it counts
+(scripts/econe_records.py).
 
 Exit status 2 with a message naming the problem for a directory without results.json or
 symmetric/branch.csv, another study's directory, or a PHI that is not a number.
 """
 
-import csv
 import json
 import math
 import pathlib
 import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from econe_records import bracket, read_rows, total_energy, value_at  # noqa: E402
+
+CONE = ["phi_e", "E_stretch", "E_bend"]
+CONTACT = CONE + ["E_penalty", "s4_defect", "gamma", "n_negative"]
 
 
 def fail(message):
@@ -30,32 +36,8 @@ def fail(message):
     sys.exit(2)
 
 
-def read_rows(path):
-    if not path.is_file():
-        return []
-    with open(path, newline="") as f:
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    rows.sort(key=lambda r: r["phi_e"])
-    return rows
-
-
-def energy(row):
-    return row["E_stretch"] + row["E_bend"] + row.get("E_penalty", 0.0)
-
-
-def around(rows, phi):
-    """The first two consecutive rows whose phi_e bracket phi, or None."""
-    for a, b in zip(rows, rows[1:]):
-        if a["phi_e"] <= phi <= b["phi_e"]:
-            return a, b
-    return None
-
-
-def interpolate(a, b, phi, value):
-    if b["phi_e"] == a["phi_e"]:
-        return value(a)
-    t = (phi - a["phi_e"]) / (b["phi_e"] - a["phi_e"])
-    return value(a) + t * (value(b) - value(a))
+def sorted_rows(path, columns):
+    return sorted(read_rows(path, columns, fail), key=lambda r: r["phi_e"])
 
 
 def main():
@@ -74,30 +56,29 @@ def main():
         fail(f"the excess angles must be numbers: {' '.join(sys.argv[2:])}")
     if not all(math.isfinite(a) for a in angles):
         fail(f"the excess angles must be finite: {' '.join(sys.argv[2:])}")
-    symmetric = read_rows(directory / "symmetric" / "branch.csv")
+    symmetric = sorted_rows(directory / "symmetric" / "branch.csv", CONTACT)
     if not symmetric:
         fail(f"{directory} has no symmetric/branch.csv samples")
-    cone = [r for r in read_rows(directory / "cone" / "branch.csv")
+    cone = [r for r in sorted_rows(directory / "cone" / "branch.csv", CONE)
             if r["phi_e"] < symmetric[0]["phi_e"]]
     reference = cone + symmetric
-    branches = [(name, read_rows(directory / name / "branch.csv"))
+    branches = [(name, sorted_rows(directory / name / "branch.csv", CONTACT))
                 for name in ("skewed", "turned")]
     print("| φe | branch | (E − E_sym)/E_sym | S4 defect | γ | negative |")
     print("|---|---|---|---|---|---|")
     for phi in angles:
-        ref = around(reference, phi)
+        e_sym = value_at(reference, phi, total_energy)
         for name, rows in branches:
             if not rows:
                 continue
-            pair = around(rows, phi)
-            if pair is None or ref is None:
+            pair = bracket(rows, phi)
+            if pair is None or e_sym is None:
                 print(f"| {phi:g} | {name} | — | — | — | — |")
                 continue
             a, b = pair
-            e_sym = interpolate(*ref, phi, energy)
-            e = interpolate(a, b, phi, energy)
-            defect = interpolate(a, b, phi, lambda r: r["s4_defect"])
-            gamma = interpolate(a, b, phi, lambda r: r["gamma"])
+            e = value_at(rows, phi, total_energy)
+            defect = value_at(rows, phi, lambda r: r["s4_defect"])
+            gamma = value_at(rows, phi, lambda r: r["gamma"])
             nearer = a if abs(a["phi_e"] - phi) <= abs(b["phi_e"] - phi) else b
             gamma_text = f"{gamma:.4f}" if math.isfinite(gamma) else "—"
             print(f"| {phi:g} | {name} | {100.0 * (e - e_sym) / e_sym:+.3f} % | {defect:.4f} "

@@ -12,7 +12,6 @@ relative to the symmetric branch's at the same phi_e, (E - E_sym) / E_sym, so th
 shows, and the turned cone's lies below it. The special values of results.json (first contact, phi_e^crit by stability and by
 energy) are marked with their phi_e. Needs matplotlib (Debian: python3-matplotlib).
 """
-import csv
 import json
 import math
 import pathlib
@@ -20,35 +19,11 @@ import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from plot_study import stability_runs  # noqa: E402  (runs of equal stability, shared ends)
+from econe_records import read_rows, total_energy, value_at  # noqa: E402
 
 
 def fail(message):
     sys.exit(f"plot_econe_contact.py: {message}")
-
-
-def read_rows(path, columns):
-    if not path.is_file():
-        return []
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    for column in columns:
-        if rows and column not in rows[0]:
-            fail(f"{path} has no column '{column}'")
-    return [{c: float(r[c]) for c in columns} for r in rows]
-
-
-def total_energy(row):
-    return row["E_stretch"] + row["E_bend"] + row.get("E_penalty", 0.0)
-
-
-def symmetric_energy_at(phi, symmetric):
-    """The symmetric branch's total energy at phi: linear between the samples bracketing it
-    (the branch is traced by increasing phi_e); None outside it."""
-    for a, b in zip(symmetric, symmetric[1:]):
-        if a["phi_e"] <= phi <= b["phi_e"] and a["phi_e"] != b["phi_e"]:
-            t = (phi - a["phi_e"]) / (b["phi_e"] - a["phi_e"])
-            return total_energy(a) + t * (total_energy(b) - total_energy(a))
-    return None
 
 
 def main():
@@ -64,12 +39,12 @@ def main():
     if results.get("study") != "econe_contact":
         fail(f"{results_path} is not an econe_contact study's (study: {results.get('study')})")
     base = ["phi_e", "E_stretch", "E_bend", "Eb_hat", "n_negative"]
-    cone = [r for r in read_rows(directory / "cone" / "branch.csv", base)
+    cone = [r for r in read_rows(directory / "cone" / "branch.csv", base, fail)
             if r["phi_e"] >= (results.get("phi_branch") or 0.0)]
     contact = base + ["E_penalty"]
-    symmetric = read_rows(directory / "symmetric" / "branch.csv", contact)
-    skewed = read_rows(directory / "skewed" / "branch.csv", contact)
-    turned = read_rows(directory / "turned" / "branch.csv", contact)
+    symmetric = read_rows(directory / "symmetric" / "branch.csv", contact, fail)
+    skewed = read_rows(directory / "skewed" / "branch.csv", contact, fail)
+    turned = read_rows(directory / "turned" / "branch.csv", contact, fail)
     if not cone and not symmetric:
         fail(f"{directory} has neither cone/branch.csv nor symmetric/branch.csv samples")
     # The skewed branch is written as traced: down from the relaxed state, then up from it.
@@ -100,7 +75,7 @@ def main():
             style = "-" if stable else "--"
             top.plot([r["phi_e"] for r in run], [r["Eb_hat"] for r in run], style, color=color,
                      linewidth=1.5, label=label)
-            points = [(r["phi_e"], symmetric_energy_at(r["phi_e"], reference), total_energy(r))
+            points = [(r["phi_e"], value_at(reference, r["phi_e"], total_energy), total_energy(r))
                       for r in run]
             points = [(p, (e - s) / s) for p, s, e in points if s]
             if points:
