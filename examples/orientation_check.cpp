@@ -2,9 +2,9 @@
 //
 // Reads a cone_branch study's directory (scene.json and states/, e.g. an econe_contact study's
 // DIR/cone or a sweep point) or a branch of an econe_contact study (DIR/symmetric, DIR/skewed,
-// DIR/turned: states/, with the scene one folder up), takes its saved state nearest --phi, turns the fold pattern over
-// the material by each of --turns, relaxes it at the same excess angle with the contact penalty
-// of the econe_contact study, and compares it with the traced state
+// DIR/turned: states/, with the scene one folder up), takes its saved state nearest --phi,
+// turns the fold pattern over the material by each of --turns, relaxes it at the same excess
+// angle with the contact penalty of the econe_contact study, and compares it with the traced state
 // (studies/pattern_orientation_check.hpp): the continuum gives every turn the same state.
 // Prints one line per turn and writes RUN_DIR/orientation_check_phi<P>.csv (atomically; P as
 // given on the command line, so that checks at several excess angles do not overwrite each
@@ -38,9 +38,10 @@ const char* kUsage = R"(usage: orientation_check RUN_DIR [options]
   --tolerance T    force tolerance of the relaxation relative to Y h^3 / R (default: the
                    scene's study.tolerance)
 RUN_DIR: a cone_branch study's directory (scene.json, states/), or a branch of an
-econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned: states/, the scene in DIR). The penalty and the
-relaxation are the studies' (scene_orientation_check_options): contact distance and exclusion
-radius from the scene, stiffness study.penalty_stiffness_factor Y l^2 / h, margin h.
+econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned: states/, the scene in DIR). The
+penalty and the relaxation are the studies' (scene_orientation_check_options): contact distance
+and exclusion radius from the scene, stiffness study.penalty_stiffness_factor Y l^2 / h,
+margin h.
 Writes RUN_DIR/orientation_check_phi<P>.csv (P as given), one row per turn:
   phi_e, turn_deg, converged, fold_angle_deg (where the folds settled; the traced state's in
   traced_fold_angle_deg), energy_relative ((E_turned - E_traced) / E_traced, E = E_s + E_b + P),

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <new>
 #include <filesystem>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>

@@ -591,7 +591,8 @@ void EconeContactRun::trace_turned() {
     if (!(turned[k - 1].negative == 0 && turned[k].negative > 0)) continue;
     t.phi_crit_stability = turned[k].phi_e;
     for (const RecordedEvent& e : turned_->events())
-      if (e.phi_e >= turned[k - 1].phi_e && e.phi_e <= turned[k].phi_e) t.phi_crit_stability = e.phi_e;
+      if (e.phi_e >= turned[k - 1].phi_e && e.phi_e <= turned[k].phi_e)
+        t.phi_crit_stability = e.phi_e;
   }
   // phi_e^crit by energy is measured against the turned cone from here on: it is the lower of
   // the two (the mesh's mirror lines hold the symmetric one), and the continuum does not tell

@@ -37,10 +37,10 @@ void save_branch_state(const std::string& path, const BranchSample& sample,
                        std::uint64_t model_fingerprint = 0);
 
 /// Reads a saved state of a model with n unknowns (parameter, tangent, next step, x;
-/// arclength, counts and iterations stay 0), in any of the formats (told by its first line, not its name). Throws
-/// std::runtime_error naming the file if it is missing, of another size, truncated, damaged
-/// (hash mismatch), or saved for another model: when both the file's fingerprint and
-/// `expected_fingerprint` are non-zero and differ (a text state has none).
+/// arclength, counts and iterations stay 0), in any of the formats (told by its first line,
+/// not its name). Throws std::runtime_error naming the file if it is missing, of another size,
+/// truncated, damaged (hash mismatch), or saved for another model: when both the file's
+/// fingerprint and `expected_fingerprint` are non-zero and differ (a text state has none).
 BranchSample load_branch_state(const std::string& path, Eigen::Index n,
                                std::uint64_t expected_fingerprint = 0);
 

@@ -212,10 +212,10 @@ struct EconeContactResults {
 /// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), turned
 /// ({start_phi, turn_deg, lowest_phi, highest_phi, lowest_phi_breaking_s4,
 /// top_energy_relative, top_s4_defect, top_gamma, largest_energy_below_symmetric,
-/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), warnings [strings], completed, end, cone_csv,
-/// symmetric_csv, skewed_csv, turned_csv (null without the turned branch), events (each
-/// branch's events.json), wall_seconds. Unset and
-/// non-finite values are null.
+/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), warnings [strings],
+/// completed, end, cone_csv, symmetric_csv, skewed_csv, turned_csv (null without the turned
+/// branch), events (each branch's events.json), wall_seconds. Unset and non-finite values are
+/// null.
 std::string econe_contact_results_json(const EconeContactResults& results);
 
 }  // namespace growshell

@@ -35,7 +35,8 @@ GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const
                                  const GrowthPathOptions& options,
                                  const std::function<void(const GrowthPathPoint&)>& on_point,
                                  const std::function<void(const NewtonIterate&)>& on_iterate,
-                                 const std::function<void(const GrowthPathFailedStep&)>& on_failed_step) {
+                                 const std::function<void(const GrowthPathFailedStep&)>&
+                                     on_failed_step) {
   if (!(options.max_step > 0.0) || !(options.min_step > 0.0) || options.min_step > options.max_step)
     throw std::invalid_argument("GrowthPathOptions: need 0 < min_step <= max_step");
   if (!(options.step_growth >= 1.0))
@@ -80,7 +81,8 @@ GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const
                                              " perturbations of a saddle"
                                        : result.message;
       const bool give_up = step / 2 < options.min_step;
-      if (on_failed_step) on_failed_step({out.last.excess_angle, phi, out.message, give_up ? 0.0 : step / 2});
+      if (on_failed_step)
+        on_failed_step({out.last.excess_angle, phi, out.message, give_up ? 0.0 : step / 2});
       if (give_up) {
         out.message = "path ended at phi_e = " + std::to_string(out.last.excess_angle) +
                       ": step to " + std::to_string(phi) + " failed (" + out.message + ")";

@@ -67,7 +67,8 @@ GrowthPathResult grow_along_path(const ShellModel& model, const Eigen::Ref<const
                                  const GrowthPathOptions& options = {},
                                  const std::function<void(const GrowthPathPoint&)>& on_point = {},
                                  const std::function<void(const NewtonIterate&)>& on_iterate = {},
-                                 const std::function<void(const GrowthPathFailedStep&)>& on_failed_step = {});
+                                 const std::function<void(const GrowthPathFailedStep&)>&
+                                     on_failed_step = {});
 
 /// Equilibrium tangent dx/d(phi_e) = -H^-1 d(gradient)/d(phi_e) at (x, phi_e) with `fixed_dofs`
 /// held (metres per radian). Returns an empty vector where H is not positive definite.

@@ -156,7 +156,8 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   oriented.turned = turned;
   const auto t = nlohmann::ordered_json::parse(econe_contact_results_json(oriented));
   std::vector<std::string> turned_keys;
-  for (auto it = t["turned"].begin(); it != t["turned"].end(); ++it) turned_keys.push_back(it.key());
+  for (auto it = t["turned"].begin(); it != t["turned"].end(); ++it)
+    turned_keys.push_back(it.key());
   const std::vector<std::string> expected_turned = {"start_phi",
                                                     "turn_deg",
                                                     "lowest_phi",
