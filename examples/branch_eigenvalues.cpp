@@ -51,7 +51,10 @@ const char* kUsage = R"(usage: branch_eigenvalues RUN_DIR [options]
   --count K     number of lowest eigenvalues per state (default 4)
   --from P      first excess angle (default 0)
   --to Q        last excess angle (default: the last state)
-Writes RUN_DIR/eigenvalues.csv, one row per state:
+  --at P1,P2,.. instead of a range, the saved state nearest each of these excess angles
+  --out FILE    where to write the table (default RUN_DIR/eigenvalues.csv); an existing file
+                is refused, so no earlier table is lost
+Writes one row per state:
   phi_e
   lambda_1..K           N/m^3: the Hessian's second variation per integral of |dx|^2 over the
                         reference sheet, with six rigid-motion pins removed: the trace's, or
@@ -59,11 +62,13 @@ Writes RUN_DIR/eigenvalues.csv, one row per state:
                         condition number above 100
   peak_radius_1..K      reference radius (m) of the sheet vertex where the mode's displacement is
                         largest: at the apex core or out at the folds
-  parity_x_1..K, parity_y_1..K
+  parity_x_1..K, parity_y_1..K, parity_s4_1..K
                         <v, S v>_M / <v, v>_M, v less its rigid part, for the mesh's mirror S
-                        about x = 0 and y = 0: +1 symmetric, -1 antisymmetric, nan when the mesh
-                        lacks that mirror (a Gmsh mesh). They classify the modes of a state with
-                        the mesh's mirrors (traced with --symmetric-subspace 1)
+                        about x = 0 and y = 0, and for S4 (the quarter turn about z followed by
+                        z -> -z): +1 symmetric, -1 antisymmetric, nan when the mesh lacks that
+                        symmetry (the unsymmetric Gmsh mesh). They classify the modes of a state
+                        with the mesh's symmetry (traced with --symmetric-subspace 1): B2 is
+                        (+1, +1, -1), A1 (+1, +1, +1), the E pair has mixed mirror parities
   elastic_fraction_1..K |v - rigid part of v|_M / |v|_M: near 0 for a rigid motion that the pins
                         barely hold, a pinning artefact, not a mode of the sheet
   turn_overlap_1..K     |<v, t>_M| / (|v|_M |t|_M), both less their rigid parts, t the turn of the
@@ -99,6 +104,54 @@ double mirror_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
   return overlap / norm;
 }
 
+// The mesh's S4, the quarter turn about z followed by z -> -z, or nothing when the mesh lacks
+// the quarter turn.
+std::optional<LinearVertexSymmetry> mesh_s4(const Eigen::MatrixX3d& positions) {
+  try {
+    LinearVertexSymmetry s4 = quarter_turn_symmetry(positions, 1e-9 * positions.cwiseAbs().maxCoeff());
+    s4.matrix.row(2) *= -1.0;  // the reference is flat (z = 0): the vertex map is the turn's
+    return s4;
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+// <v, T v>_M / <v, v>_M for the field T v at S p_i equal to S v_i (S the symmetry's matrix),
+// with lumped vertex masses m, which the symmetry maps onto each other.
+double linear_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
+                     const std::optional<LinearVertexSymmetry>& symmetry) {
+  if (!symmetry) return std::numeric_limits<double>::quiet_NaN();
+  double overlap = 0.0, norm = 0.0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const auto image = static_cast<Eigen::Index>(symmetry->image[static_cast<std::size_t>(i)]);
+    overlap += m(i) * v.segment<3>(3 * image).dot(symmetry->matrix * v.segment<3>(3 * i));
+    norm += m(i) * v.segment<3>(3 * i).squaredNorm();
+  }
+  return overlap / norm;
+}
+
+// The saved states to analyse: those in [from, to], or, when `at` is not empty, the one
+// nearest each excess angle of `at` (each state once, in the order of the files).
+std::vector<std::filesystem::path> states_to_analyse(const std::vector<std::filesystem::path>& files,
+                                                      Eigen::Index dimension, double from, double to,
+                                                      const std::vector<double>& at) {
+  std::vector<double> phis;
+  for (const auto& file : files) phis.push_back(examples::load_point(file.string(), dimension).parameter);
+  std::vector<bool> chosen(files.size(), false);
+  for (std::size_t i = 0; i < files.size(); ++i) chosen[i] = at.empty() && phis[i] >= from && phis[i] <= to;
+  for (const double target : at) {
+    if (files.empty()) break;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < files.size(); ++i)
+      if (std::abs(phis[i] - target) < std::abs(phis[best] - target)) best = i;
+    chosen[best] = true;
+  }
+  std::vector<std::filesystem::path> result;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (chosen[i]) result.push_back(files[i]);
+  return result;
+}
+
 // v less its M-orthogonal projection onto the rigid motions of the state x (translations, and
 // rotations about the point c): the pins add a rigid velocity to every mode so that it vanishes
 // at them, and that part does not share the mode's mirror parity.
@@ -127,7 +180,12 @@ int run(int argc, char** argv) {
   const int count = cl.integer("--count", 4);
   const double from = cl.number("--from", 0.0);
   const double to = cl.number("--to", std::numeric_limits<double>::infinity());
+  const std::vector<double> at =
+      cl.text("--at", "").empty() ? std::vector<double>{} : cl.number_list("--at", "");
+  const std::string path = cl.text("--out", dir + "/eigenvalues.csv");
   cl.reject_unknown();
+  if (std::filesystem::exists(path))
+    throw std::invalid_argument(path + " exists: name another --out, or move it away");
   if (count < 1) throw std::invalid_argument("--count must be >= 1");
   if (!(from <= to)) throw std::invalid_argument("--from must not exceed --to");
 
@@ -138,7 +196,8 @@ int run(int argc, char** argv) {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   const auto pinned =
       mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
-  const std::vector<std::filesystem::path> files = examples::saved_point_files(dir);
+  const std::vector<std::filesystem::path> files =
+      states_to_analyse(examples::saved_point_files(dir), model.dimension(), from, to, at);
   // The lumped reference area of each control point, for each of its three coordinates.
   const Eigen::VectorXd dof_mass =
       model.reference().vertex_areas().replicate(1, 3).transpose().reshaped();
@@ -149,15 +208,16 @@ int run(int argc, char** argv) {
   for (int k = 1; k <= count; ++k) csv << ",peak_radius_" << k;
   for (int k = 1; k <= count; ++k) csv << ",parity_x_" << k;
   for (int k = 1; k <= count; ++k) csv << ",parity_y_" << k;
+  for (int k = 1; k <= count; ++k) csv << ",parity_s4_" << k;
   for (int k = 1; k <= count; ++k) csv << ",elastic_fraction_" << k;
   for (int k = 1; k <= count; ++k) csv << ",turn_overlap_" << k;
   for (int k = 1; k <= count; ++k) csv << ",ghost_fraction_" << k;
   csv << ",pin_condition\n";
   const std::array<std::optional<VertexSymmetry>, 2> mirrors = {mesh_mirror(P, 0), mesh_mirror(P, 1)};
+  const std::optional<LinearVertexSymmetry> s4 = mesh_s4(P);
   int rows = 0;
   for (const auto& file : files) {
     const BranchSample s = examples::load_point(file.string(), model.dimension());
-    if (s.parameter < from || s.parameter > to) continue;
     ObjectiveAtParameter energy(model, s.parameter);
     EigenpairOptions options;
     options.count = count;
@@ -198,6 +258,11 @@ int run(int argc, char** argv) {
       }
     }
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
+      const double parity = linear_parity(elastic[static_cast<std::size_t>(k)], model.reference().vertex_areas(), s4);
+      csv << ',' << parity;
+      std::printf(" s4%+.2f", parity);
+    }
+    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
       const Eigen::VectorXd& e = elastic[static_cast<std::size_t>(k)];
       const Eigen::VectorXd& v = pairs.vectors.col(k);
       const double fraction = std::sqrt(e.cwiseProduct(dof_mass).dot(e) / v.cwiseProduct(dof_mass).dot(v));
@@ -224,7 +289,6 @@ int run(int argc, char** argv) {
     std::printf(" pins %.3g\n", condition);
     ++rows;
   }
-  const std::string path = dir + "/eigenvalues.csv";
   write_file_atomically(path, csv.str());
   std::printf("# wrote %s (%d states)\n", path.c_str(), rows);
   return 0;

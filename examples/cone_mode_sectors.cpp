@@ -1,0 +1,190 @@
+// cone_mode_sectors: the softest modes of a symmetric two-fold cone, one symmetry class at a
+// time.
+//
+// The symmetric n = 2 cone has the group D2d: the mirrors x -> -x and y -> -y of its folds and
+// S4, the quarter turn about z followed by z -> -z. Its second variation does not couple modes
+// of different parities, so its eigenproblem H v = lambda M v (M the lumped reference area, as
+// branch_eigenvalues) splits into sectors: the modes even under both mirrors (A1, which keeps
+// S4, and B2, which breaks it: the up-folds close while the down-folds open), the modes odd
+// under both (A2, the turn of the pattern about the axis, and B1), and the modes even under one
+// mirror and odd under the other (the E pairs). Each sector is the subspace of a SymmetricSubspace
+// whose generators are the mirrors with their signs flipped where the mode is odd; the
+// rigid motions in the sector are pinned there (SymmetricSubspace::rigid_motion_pins), so no
+// pin mixes the classes, as six pins on the whole sheet do. Within the even-even and odd-odd
+// sectors, the S4 parity of each mode tells A1 from B2 and A2 from B1. These are the classes of
+// the h -> 0 cone's eigenvalues in ../shared/docs/physics.md, "Stability of the h -> 0 cone".
+//
+// Reads a cone_branch study's directory traced in the mirror subspace of a mesh with the cone's
+// symmetry (rings, gmsh_d4): scene.json and states/. Writes OUT (default
+// RUN_DIR/mode_sectors.csv; an existing file is refused) atomically, one row per mode:
+//   phi_e, sector (even_even, odd_odd, even_odd), class (A1, B2, A2, B1, E, or ? when the S4
+//   parity is neither near +1 nor near -1), lambda (N/m^3), s4_parity, peak_radius (m), and
+//   lambda_pinned, the k-th eigenvalue with the sector's rigid motions pinned, nearer zero than
+//   the sheet's (solvers/stability/rigid_free_eigenpairs.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/objective_at_parameter.hpp"
+#include "examples/support/directory_command_line.hpp"
+#include "examples/support/guarded_main.hpp"
+#include "examples/support/saved_point.hpp"
+#include "libshell/io/scene.hpp"
+#include "libshell/mesh/rigid_motion.hpp"
+#include "libshell/mesh/vertex_symmetry.hpp"
+#include "solvers/continuation/symmetric_subspace.hpp"
+#include "solvers/stability/mass_normalized_eigenpairs.hpp"
+#include "solvers/stability/rigid_free_eigenpairs.hpp"
+#include "studies/atomic_file.hpp"
+
+namespace {
+
+using namespace growshell;
+
+const char* kUsage = R"(usage: cone_mode_sectors RUN_DIR [options]
+  --at P1,P2,..  the saved states nearest these excess angles (required)
+  --count K      modes per sector (default 3)
+  --out FILE     the table (default RUN_DIR/mode_sectors.csv); an existing file is refused
+Writes one row per mode: phi_e, sector, class, lambda (N/m^3), s4_parity, peak_radius (m),
+lambda_pinned (N/m^3, with the sector's rigid motions pinned: below lambda).
+RUN_DIR: a cone_branch study traced in the mirror subspace of a mesh with the cone's
+symmetry (mesh.family rings or gmsh_d4).
+)";
+
+struct Sector {
+  const char* name;
+  double sign_x;  // parity under x -> -x
+  double sign_y;  // parity under y -> -y
+};
+
+// The mirror about coordinate `axis` acting on the modes of parity `parity` under it: a mode
+// v with T v = parity v is invariant under parity T.
+VertexSymmetry signed_mirror(const Eigen::MatrixX3d& positions, int axis, double parity) {
+  VertexSymmetry mirror = mirror_symmetry(positions, axis, 1e-9 * positions.cwiseAbs().maxCoeff());
+  mirror.signs *= parity;
+  return mirror;
+}
+
+// <v, T v>_M / <v, v>_M for the improper quarter turn S4 (vertex masses m).
+double s4_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m, const LinearVertexSymmetry& s4) {
+  double overlap = 0.0, norm = 0.0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    const auto image = static_cast<Eigen::Index>(s4.image[static_cast<std::size_t>(i)]);
+    overlap += m(i) * v.segment<3>(3 * image).dot(s4.matrix * v.segment<3>(3 * i));
+    norm += m(i) * v.segment<3>(3 * i).squaredNorm();
+  }
+  return overlap / norm;
+}
+
+std::string mode_class(const Sector& sector, double parity) {
+  if (sector.sign_x != sector.sign_y) return "E";
+  if (parity > 0.9) return sector.sign_x > 0 ? "A1" : "A2";
+  if (parity < -0.9) return sector.sign_x > 0 ? "B2" : "B1";
+  return "?";
+}
+
+int run(int argc, char** argv) {
+  int exit_code = 0;
+  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
+  if (!command_line) return exit_code;
+  const std::string dir = command_line->directory;
+  examples::CommandLine& cl = command_line->options;
+  if (cl.text("--at", "").empty()) throw std::invalid_argument("--at is required (excess angles)");
+  const std::vector<double> at = cl.number_list("--at", "");
+  const int count = cl.integer("--count", 3);
+  const std::string path = cl.text("--out", dir + "/mode_sectors.csv");
+  cl.reject_unknown();
+  if (count < 1) throw std::invalid_argument("--count must be >= 1");
+  if (std::filesystem::exists(path))
+    throw std::invalid_argument(path + " exists: name another --out, or move it away");
+
+  const Scene scene = read_scene(dir + "/scene.json");
+  ShellModel model(scene_mesh(scene), scene_model_settings(scene));
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::MatrixX3d P =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
+  const Eigen::VectorXd& vertex_mass = model.reference().vertex_areas();
+  const Eigen::VectorXd dof_mass = vertex_mass.replicate(1, 3).transpose().reshaped();
+  LinearVertexSymmetry s4 = quarter_turn_symmetry(P, 1e-9 * P.cwiseAbs().maxCoeff());
+  s4.matrix.row(2) *= -1.0;  // then z -> -z; the flat reference maps as the turn alone
+  const SymmetricSubspace frame(P.rows(), {signed_mirror(P, 0, 1.0), signed_mirror(P, 1, 1.0)});
+  const std::vector<Sector> sectors = {
+      {"even_even", 1.0, 1.0}, {"odd_odd", -1.0, -1.0}, {"even_odd", 1.0, -1.0}};
+
+  // The saved state nearest each excess angle asked for, once.
+  const std::vector<std::filesystem::path> files = examples::saved_point_files(dir);
+  std::vector<double> phis;
+  for (const auto& file : files) phis.push_back(examples::load_point(file.string(), model.dimension()).parameter);
+  std::vector<std::size_t> chosen;
+  for (const double target : at) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < phis.size(); ++i)
+      if (std::abs(phis[i] - target) < std::abs(phis[best] - target)) best = i;
+    if (!phis.empty() && std::find(chosen.begin(), chosen.end(), best) == chosen.end()) chosen.push_back(best);
+  }
+  if (chosen.empty()) throw std::invalid_argument(dir + "/states holds no saved state");
+
+  std::ostringstream csv;
+  csv << std::setprecision(10) << "phi_e,sector,class,lambda,s4_parity,peak_radius,lambda_pinned\n";
+  for (const std::size_t i : chosen) {
+    const BranchSample sample = examples::load_point(files[i].string(), model.dimension());
+    // Into the frame whose coordinate planes are the cone's mirrors.
+    const Eigen::VectorXd x = frame.aligning_motion(sample.x).apply(sample.x);
+    const double asymmetry = frame.asymmetry(x);
+    ObjectiveAtParameter energy(model, sample.parameter);
+    Eigen::SparseMatrix<double> upper = energy.hessian_pattern();
+    energy.evaluate(x, nullptr, &upper);
+    const Eigen::SparseMatrix<double> hessian = upper.selfadjointView<Eigen::Upper>();
+    std::printf("%9.5f  asymmetry %.2e m\n", sample.parameter, asymmetry);
+    for (const Sector& sector : sectors) {
+      const SymmetricSubspace subspace(
+          P.rows(), {signed_mirror(P, 0, sector.sign_x), signed_mirror(P, 1, sector.sign_y)});
+      const Eigen::SparseMatrix<double>& Q = subspace.basis();
+      const Eigen::SparseMatrix<double> reduced = (Q.transpose() * hessian * Q).pruned();
+      const Eigen::SparseMatrix<double> reduced_upper = reduced.triangularView<Eigen::Upper>();
+      // diag(Q^T M Q): Q's columns are normalised signed sums over orbits of dofs of equal
+      // mass, so Q^T M Q is diagonal.
+      const Eigen::VectorXd reduced_mass = Q.cwiseAbs2().transpose() * dof_mass;
+      // The pins hold the sector's rigid motions; the sheet's eigenpairs are those free of
+      // rigid motion (rigid_free_eigenpairs), found on the lowest count + 6 pinned modes.
+      EigenpairOptions options;
+      options.count = count + 6;
+      const Eigenpairs pinned = lowest_mass_normalized_eigenpairs_of_matrix(
+          reduced_upper, reduced_mass, subspace.rigid_motion_pins(x), options);
+      const RigidFreeEigenpairs ritz = rigid_free_eigenpairs(
+          pinned, Q.transpose() * rigid_velocity_fields(x), reduced_mass, count);
+      for (Eigen::Index k = 0; k < ritz.values.size(); ++k) {
+        const Eigen::VectorXd v = Q * ritz.vectors.col(k);
+        const double parity = s4_parity(v, vertex_mass, s4);
+        double peak = 0.0, radius = 0.0;
+        for (const int vertex : model.sheet_vertices()) {
+          const double a = v.segment<3>(3 * vertex).norm();
+          if (a > peak) {
+            peak = a;
+            radius = (X.segment<2>(3 * vertex) - model.settings().growth.center.head<2>()).norm();
+          }
+        }
+        const std::string cls = mode_class(sector, parity);
+        csv << sample.parameter << ',' << sector.name << ',' << cls << ',' << ritz.values(k) << ','
+            << parity << ',' << radius << ',' << pinned.values(k) << '\n';
+        std::printf("  %-9s %-2s %12.5e  (pinned %12.5e)  S4 %+.3f  peak r %.3f\n", sector.name,
+                    cls.c_str(), ritz.values(k), pinned.values(k), parity, radius);
+      }
+    }
+  }
+  write_file_atomically(path, csv.str());
+  std::printf("# wrote %s\n", path.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return growshell::examples::guarded_main("cone_mode_sectors", run, argc, argv);
+}
