@@ -35,12 +35,7 @@ Writes RUN_DIR/apex_strain.csv: phi_e, min_stretch, min_partner, min_radius, max
 max_partner, max_radius (principal elastic stretches of abar^-1 a near the apex).
 )";
 
-int run(int argc, char** argv) {
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
+int run(const std::string& dir, examples::CommandLine& cl) {
   const Scene scene = read_scene(dir + "/scene.json");
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   const double radius = cl.number("--radius", 2.0 * h);
@@ -80,5 +75,5 @@ int run(int argc, char** argv) {
 }  // namespace growshell
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("apex_strain", growshell::run, argc, argv);
+  return growshell::examples::directory_main("apex_strain", growshell::kUsage, growshell::run, argc, argv);
 }

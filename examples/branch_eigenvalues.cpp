@@ -171,12 +171,7 @@ double mass_weighted_cosine(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
   return std::abs(a.cwiseProduct(m).dot(b)) / norms;
 }
 
-int run(int argc, char** argv) {
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
+int run(const std::string& dir, examples::CommandLine& cl) {
   const int count = cl.integer("--count", 4);
   const double from = cl.number("--from", 0.0);
   const double to = cl.number("--to", std::numeric_limits<double>::infinity());
@@ -297,5 +292,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("branch_eigenvalues", run, argc, argv);
+  return growshell::examples::directory_main("branch_eigenvalues", kUsage, run, argc, argv);
 }

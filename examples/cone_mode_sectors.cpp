@@ -89,12 +89,7 @@ std::string mode_class(const Sector& sector, double parity) {
   return "?";
 }
 
-int run(int argc, char** argv) {
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
+int run(const std::string& dir, examples::CommandLine& cl) {
   if (cl.text("--at", "").empty()) throw std::invalid_argument("--at is required (excess angles)");
   const std::vector<double> at = cl.number_list("--at", "");
   const int count = cl.integer("--count", 3);
@@ -186,5 +181,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("cone_mode_sectors", run, argc, argv);
+  return growshell::examples::directory_main("cone_mode_sectors", kUsage, run, argc, argv);
 }

@@ -54,12 +54,7 @@ struct Row {
   double crossing_radius_a = 0.0, crossing_radius_b = 0.0;  // reference radii of the pair
 };
 
-int run(int argc, char** argv) {
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
+int run(const std::string& dir, examples::CommandLine& cl) {
   const std::vector<double> bands = cl.number_list("--bands", "0,0.2,0.5,0.9");
   for (const double b : bands)
     if (!(b >= 0.0)) throw std::invalid_argument("--bands: a band starts at a radius >= 0");
@@ -147,5 +142,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("contact_profile", run, argc, argv);
+  return growshell::examples::directory_main("contact_profile", kUsage, run, argc, argv);
 }

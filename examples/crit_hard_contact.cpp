@@ -177,13 +177,8 @@ const EnergyCrossing* nearest_crossing(const std::vector<EnergyCrossing>& crossi
   return best;
 }
 
-int run(int argc, char** argv) {
+int run(const std::string& run_dir, examples::CommandLine& cl) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string run_dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
   const double near = cl.number("--near", std::numeric_limits<double>::quiet_NaN());
   const int neighbours = cl.integer("--neighbours", 1);
   const int max_extensions = cl.integer("--max-extensions", 6);
@@ -450,5 +445,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("crit_hard_contact", run, argc, argv);
+  return growshell::examples::directory_main("crit_hard_contact", kUsage, run, argc, argv);
 }

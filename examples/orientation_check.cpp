@@ -50,12 +50,7 @@ Writes RUN_DIR/orientation_check_phi<P>.csv (P as given), one row per turn:
   turn_free_index
 )";
 
-int run(int argc, char** argv) {
-  int exit_code = 0;
-  auto command_line = examples::read_directory_command_line(argc, argv, kUsage, &exit_code);
-  if (!command_line) return exit_code;
-  const std::string dir = command_line->directory;
-  examples::CommandLine& cl = command_line->options;
+int run(const std::string& dir, examples::CommandLine& cl) {
   const std::string phi_text = cl.text("--phi", "");
   const double phi = cl.number("--phi", std::numeric_limits<double>::quiet_NaN());
   const std::vector<double> turns_deg = cl.number_list("--turns", "22.5");
@@ -127,5 +122,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return growshell::examples::guarded_main("orientation_check", run, argc, argv);
+  return growshell::examples::directory_main("orientation_check", kUsage, run, argc, argv);
 }

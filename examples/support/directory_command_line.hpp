@@ -1,6 +1,7 @@
 #pragma once
 // The command line of the programs that read an earlier run (contact_profile,
-// crit_hard_contact): the run's directory first, then `--name value` options.
+// crit_hard_contact, ...): the run's directory first, then `--name value` options; and their
+// main().
 
 #include <cstdio>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "examples/support/command_line.hpp"
+#include "examples/support/guarded_main.hpp"
 
 namespace growshell::examples {
 
@@ -32,6 +34,22 @@ inline std::optional<DirectoryCommandLine> read_directory_command_line(int argc,
   std::vector<char*> rest(argv + 2, argv + argc);
   rest.insert(rest.begin(), argv[0]);
   return DirectoryCommandLine{argv[1], CommandLine(static_cast<int>(rest.size()), rest.data())};
+}
+
+/// The main() of a program that reads an earlier run: run(directory, options), guarded as
+/// guarded_main (an exception becomes a message naming `program` and exit status 2); without a
+/// directory, or with --help / -h first, prints `usage` and returns 2 (0 for help).
+inline int directory_main(const char* program, const char* usage,
+                          int (*run)(const std::string& directory, CommandLine& options),
+                          int argc, char** argv) {
+  return guarded_main(
+      program,
+      [&](int n, char** args) {
+        int exit_code = 0;
+        auto command_line = read_directory_command_line(n, args, usage, &exit_code);
+        return command_line ? run(command_line->directory, command_line->options) : exit_code;
+      },
+      argc, argv);
 }
 
 }  // namespace growshell::examples

@@ -7,7 +7,8 @@
 
 namespace growshell::examples {
 
-inline int guarded_main(const char* program, int (*run)(int, char**), int argc, char** argv) {
+template <class Run>
+int guarded_main(const char* program, Run&& run, int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
