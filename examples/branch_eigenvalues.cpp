@@ -29,6 +29,7 @@
 #include "core/objective_at_parameter.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
+#include "examples/support/mode_symmetry.hpp"
 #include "examples/support/saved_point.hpp"
 #include "libshell/io/scene.hpp"
 #include "libshell/mesh/rigid_motion.hpp"
@@ -81,75 +82,15 @@ Writes one row per state:
                         (pinned_rigid_motion_condition): large when they barely do
 )";
 
-// The mirror of the reference mesh about x = 0 (axis 0) or y = 0 (axis 1), or nothing when the
-// mesh lacks it.
-std::optional<VertexSymmetry> mesh_mirror(const Eigen::MatrixX3d& positions, int axis) {
+// A symmetry of the reference mesh (examples/support/mode_symmetry.hpp), or nothing when the
+// mesh lacks it (the unsymmetric Gmsh mesh).
+template <class Find>
+std::optional<LinearVertexSymmetry> if_the_mesh_has(Find find) {
   try {
-    return mirror_symmetry(positions, axis, 1e-9 * positions.cwiseAbs().maxCoeff());
+    return find();
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
-}
-
-// <v, S v>_M / <v, v>_M for displacement v (3 per vertex) and lumped vertex masses m.
-double mirror_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
-                     const std::optional<VertexSymmetry>& mirror) {
-  if (!mirror) return std::numeric_limits<double>::quiet_NaN();
-  double overlap = 0.0, norm = 0.0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const auto image = static_cast<Eigen::Index>(mirror->image[static_cast<std::size_t>(i)]);
-    overlap += m(i) * v.segment<3>(3 * i).dot(mirror->signs.cwiseProduct(v.segment<3>(3 * image)));
-    norm += m(i) * v.segment<3>(3 * i).squaredNorm();
-  }
-  return overlap / norm;
-}
-
-// The mesh's S4, the quarter turn about z followed by z -> -z, or nothing when the mesh lacks
-// the quarter turn.
-std::optional<LinearVertexSymmetry> mesh_s4(const Eigen::MatrixX3d& positions) {
-  try {
-    LinearVertexSymmetry s4 = quarter_turn_symmetry(positions, 1e-9 * positions.cwiseAbs().maxCoeff());
-    s4.matrix.row(2) *= -1.0;  // the reference is flat (z = 0): the vertex map is the turn's
-    return s4;
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
-// <v, T v>_M / <v, v>_M for the field T v at S p_i equal to S v_i (S the symmetry's matrix),
-// with lumped vertex masses m, which the symmetry maps onto each other.
-double linear_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m,
-                     const std::optional<LinearVertexSymmetry>& symmetry) {
-  if (!symmetry) return std::numeric_limits<double>::quiet_NaN();
-  double overlap = 0.0, norm = 0.0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const auto image = static_cast<Eigen::Index>(symmetry->image[static_cast<std::size_t>(i)]);
-    overlap += m(i) * v.segment<3>(3 * image).dot(symmetry->matrix * v.segment<3>(3 * i));
-    norm += m(i) * v.segment<3>(3 * i).squaredNorm();
-  }
-  return overlap / norm;
-}
-
-// The saved states to analyse: those in [from, to], or, when `at` is not empty, the one
-// nearest each excess angle of `at` (each state once, in the order of the files).
-std::vector<std::filesystem::path> states_to_analyse(const std::vector<std::filesystem::path>& files,
-                                                      Eigen::Index dimension, double from, double to,
-                                                      const std::vector<double>& at) {
-  std::vector<double> phis;
-  for (const auto& file : files) phis.push_back(examples::load_point(file.string(), dimension).parameter);
-  std::vector<bool> chosen(files.size(), false);
-  for (std::size_t i = 0; i < files.size(); ++i) chosen[i] = at.empty() && phis[i] >= from && phis[i] <= to;
-  for (const double target : at) {
-    if (files.empty()) break;
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < files.size(); ++i)
-      if (std::abs(phis[i] - target) < std::abs(phis[best] - target)) best = i;
-    chosen[best] = true;
-  }
-  std::vector<std::filesystem::path> result;
-  for (std::size_t i = 0; i < files.size(); ++i)
-    if (chosen[i]) result.push_back(files[i]);
-  return result;
 }
 
 // v less its M-orthogonal projection onto the rigid motions of the state x (translations, and
@@ -191,8 +132,6 @@ int run(const std::string& dir, examples::CommandLine& cl) {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   const auto pinned =
       mirror_axis_pinned_dofs(P, model.sheet_vertices(), model.settings().growth.center);
-  const std::vector<std::filesystem::path> files =
-      states_to_analyse(examples::saved_point_files(dir), model.dimension(), from, to, at);
   // The lumped reference area of each control point, for each of its three coordinates.
   const Eigen::VectorXd dof_mass =
       model.reference().vertex_areas().replicate(1, 3).transpose().reshaped();
@@ -208,11 +147,14 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   for (int k = 1; k <= count; ++k) csv << ",turn_overlap_" << k;
   for (int k = 1; k <= count; ++k) csv << ",ghost_fraction_" << k;
   csv << ",pin_condition\n";
-  const std::array<std::optional<VertexSymmetry>, 2> mirrors = {mesh_mirror(P, 0), mesh_mirror(P, 1)};
-  const std::optional<LinearVertexSymmetry> s4 = mesh_s4(P);
+  // The columns parity_x, parity_y and parity_s4, and the tag each has on the screen.
+  const std::array<std::optional<LinearVertexSymmetry>, 3> symmetries = {
+      if_the_mesh_has([&] { return examples::reference_mirror(P, 0); }),
+      if_the_mesh_has([&] { return examples::reference_mirror(P, 1); }),
+      if_the_mesh_has([&] { return examples::reference_s4(P); })};
+  const std::array<const char*, 3> tags = {"", "", "s4"};
   int rows = 0;
-  for (const auto& file : files) {
-    const BranchSample s = examples::load_point(file.string(), model.dimension());
+  const auto analyse = [&](const BranchSample& s) {
     ObjectiveAtParameter energy(model, s.parameter);
     EigenpairOptions options;
     options.count = count;
@@ -231,31 +173,22 @@ int run(const std::string& dir, examples::CommandLine& cl) {
       std::printf(" %12.5e", pairs.values(k));
     }
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
-      double peak = 0.0, radius = 0.0;
-      for (const int v : model.sheet_vertices()) {
-        const double a = pairs.vectors.col(k).segment<3>(3 * v).norm();
-        if (a > peak) {
-          peak = a;
-          radius = (X.segment<2>(3 * v) - model.settings().growth.center.head<2>()).norm();
-        }
-      }
+      const double radius = examples::mode_peak_radius(model, pairs.vectors.col(k));
       csv << ',' << radius;
       std::printf(" r=%.3f", radius);
     }
     std::vector<Eigen::VectorXd> elastic;
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k)
       elastic.push_back(without_rigid_motion(pairs.vectors.col(k), s.x, model.settings().growth.center, dof_mass));
-    for (const auto& mirror : mirrors) {
+    for (std::size_t j = 0; j < symmetries.size(); ++j) {
       for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
-        const double parity = mirror_parity(elastic[static_cast<std::size_t>(k)], model.reference().vertex_areas(), mirror);
+        const double parity =
+            symmetries[j] ? examples::mode_parity(elastic[static_cast<std::size_t>(k)],
+                                                  model.reference().vertex_areas(), *symmetries[j])
+                          : std::numeric_limits<double>::quiet_NaN();
         csv << ',' << parity;
-        std::printf(" %+.2f", parity);
+        std::printf(" %s%+.2f", tags[j], parity);
       }
-    }
-    for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
-      const double parity = linear_parity(elastic[static_cast<std::size_t>(k)], model.reference().vertex_areas(), s4);
-      csv << ',' << parity;
-      std::printf(" s4%+.2f", parity);
     }
     for (Eigen::Index k = 0; k < pairs.values.size(); ++k) {
       const Eigen::VectorXd& e = elastic[static_cast<std::size_t>(k)];
@@ -283,6 +216,15 @@ int run(const std::string& dir, examples::CommandLine& cl) {
     csv << ',' << condition << '\n';
     std::printf(" pins %.3g\n", condition);
     ++rows;
+  };
+  // The saved states in [from, to], one at a time, or those nearest the excess angles of --at.
+  if (at.empty()) {
+    for (const auto& file : examples::saved_point_files(dir)) {
+      const BranchSample s = examples::load_point(file.string(), model.dimension());
+      if (s.parameter >= from && s.parameter <= to) analyse(s);
+    }
+  } else {
+    for (const BranchSample& s : nearest_saved_states(dir, at, model.dimension())) analyse(s);
   }
   write_file_atomically(path, csv.str());
   std::printf("# wrote %s (%d states)\n", path.c_str(), rows);

@@ -21,7 +21,6 @@
 //   parity is neither near +1 nor near -1), lambda (N/m^3), s4_parity, peak_radius (m), and
 //   lambda_pinned, the k-th eigenvalue with the sector's rigid motions pinned, nearer zero than
 //   the sheet's (solvers/stability/rigid_free_eigenpairs.hpp).
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -34,7 +33,7 @@
 #include "core/objective_at_parameter.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
-#include "examples/support/saved_point.hpp"
+#include "examples/support/mode_symmetry.hpp"
 #include "libshell/io/scene.hpp"
 #include "libshell/mesh/rigid_motion.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
@@ -42,6 +41,7 @@
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
 #include "solvers/stability/rigid_free_eigenpairs.hpp"
 #include "studies/atomic_file.hpp"
+#include "studies/saved_state.hpp"
 
 namespace {
 
@@ -71,17 +71,6 @@ VertexSymmetry signed_mirror(const Eigen::MatrixX3d& positions, int axis, double
   return mirror;
 }
 
-// <v, T v>_M / <v, v>_M for the improper quarter turn S4 (vertex masses m).
-double s4_parity(const Eigen::VectorXd& v, const Eigen::VectorXd& m, const LinearVertexSymmetry& s4) {
-  double overlap = 0.0, norm = 0.0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
-    const auto image = static_cast<Eigen::Index>(s4.image[static_cast<std::size_t>(i)]);
-    overlap += m(i) * v.segment<3>(3 * image).dot(s4.matrix * v.segment<3>(3 * i));
-    norm += m(i) * v.segment<3>(3 * i).squaredNorm();
-  }
-  return overlap / norm;
-}
-
 std::string mode_class(const Sector& sector, double parity) {
   if (sector.sign_x != sector.sign_y) return "E";
   if (parity > 0.9) return sector.sign_x > 0 ? "A1" : "A2";
@@ -106,29 +95,28 @@ int run(const std::string& dir, examples::CommandLine& cl) {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   const Eigen::VectorXd& vertex_mass = model.reference().vertex_areas();
   const Eigen::VectorXd dof_mass = vertex_mass.replicate(1, 3).transpose().reshaped();
-  LinearVertexSymmetry s4 = quarter_turn_symmetry(P, 1e-9 * P.cwiseAbs().maxCoeff());
-  s4.matrix.row(2) *= -1.0;  // then z -> -z; the flat reference maps as the turn alone
-  const SymmetricSubspace frame(P.rows(), {signed_mirror(P, 0, 1.0), signed_mirror(P, 1, 1.0)});
-  const std::vector<Sector> sectors = {
-      {"even_even", 1.0, 1.0}, {"odd_odd", -1.0, -1.0}, {"even_odd", 1.0, -1.0}};
+  const LinearVertexSymmetry s4 = examples::reference_s4(P);
+  // Each sector's subspace, once: the states invariant under the mirrors with their signs
+  // flipped where the sector's modes are odd. The even-even one is the cone's own mirror
+  // subspace, the frame the states are brought into.
+  struct SectorSpace {
+    Sector sector;
+    SymmetricSubspace subspace;
+  };
+  std::vector<SectorSpace> sectors;
+  for (const Sector& sector : {Sector{"even_even", 1.0, 1.0}, Sector{"odd_odd", -1.0, -1.0},
+                               Sector{"even_odd", 1.0, -1.0}})
+    sectors.push_back({sector, SymmetricSubspace(P.rows(), {signed_mirror(P, 0, sector.sign_x),
+                                                            signed_mirror(P, 1, sector.sign_y)})});
+  const SymmetricSubspace& frame = sectors.front().subspace;
 
-  // The saved state nearest each excess angle asked for, once.
-  const std::vector<std::filesystem::path> files = examples::saved_point_files(dir);
-  std::vector<double> phis;
-  for (const auto& file : files) phis.push_back(examples::load_point(file.string(), model.dimension()).parameter);
-  std::vector<std::size_t> chosen;
-  for (const double target : at) {
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < phis.size(); ++i)
-      if (std::abs(phis[i] - target) < std::abs(phis[best] - target)) best = i;
-    if (!phis.empty() && std::find(chosen.begin(), chosen.end(), best) == chosen.end()) chosen.push_back(best);
-  }
-  if (chosen.empty()) throw std::invalid_argument(dir + "/states holds no saved state");
+  // The saved state nearest each excess angle asked for, each once.
+  const std::vector<BranchSample> samples = nearest_saved_states(dir, at, model.dimension());
+  if (samples.empty()) throw std::invalid_argument(dir + "/states holds no saved state");
 
   std::ostringstream csv;
   csv << std::setprecision(10) << "phi_e,sector,class,lambda,s4_parity,peak_radius,lambda_pinned\n";
-  for (const std::size_t i : chosen) {
-    const BranchSample sample = examples::load_point(files[i].string(), model.dimension());
+  for (const BranchSample& sample : samples) {
     // Into the frame whose coordinate planes are the cone's mirrors.
     const Eigen::VectorXd x = frame.aligning_motion(sample.x).apply(sample.x);
     const double asymmetry = frame.asymmetry(x);
@@ -146,9 +134,7 @@ int run(const std::string& dir, examples::CommandLine& cl) {
     energy.evaluate(x, nullptr, &upper);
     const Eigen::SparseMatrix<double> hessian = upper.selfadjointView<Eigen::Upper>();
     std::printf("%9.5f  asymmetry %.2e m\n", sample.parameter, asymmetry);
-    for (const Sector& sector : sectors) {
-      const SymmetricSubspace subspace(
-          P.rows(), {signed_mirror(P, 0, sector.sign_x), signed_mirror(P, 1, sector.sign_y)});
+    for (const auto& [sector, subspace] : sectors) {
       const Eigen::SparseMatrix<double>& Q = subspace.basis();
       const Eigen::SparseMatrix<double> reduced = (Q.transpose() * hessian * Q).pruned();
       const Eigen::SparseMatrix<double> reduced_upper = reduced.triangularView<Eigen::Upper>();
@@ -167,15 +153,8 @@ int run(const std::string& dir, examples::CommandLine& cl) {
           pinned, Q.transpose() * rigid_velocity_fields(x), reduced_mass, count);
       for (Eigen::Index k = 0; k < ritz.values.size(); ++k) {
         const Eigen::VectorXd v = Q * ritz.vectors.col(k);
-        const double parity = s4_parity(v, vertex_mass, s4);
-        double peak = 0.0, radius = 0.0;
-        for (const int vertex : model.sheet_vertices()) {
-          const double a = v.segment<3>(3 * vertex).norm();
-          if (a > peak) {
-            peak = a;
-            radius = (X.segment<2>(3 * vertex) - model.settings().growth.center.head<2>()).norm();
-          }
-        }
+        const double parity = examples::mode_parity(v, vertex_mass, s4);
+        const double radius = examples::mode_peak_radius(model, v);
         const std::string cls = mode_class(sector, parity);
         csv << sample.parameter << ',' << sector.name << ',' << cls << ',' << ritz.values(k) << ','
             << parity << ',' << radius << ',' << pinned.values(k) << '\n';

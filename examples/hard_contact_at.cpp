@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string>
 
+#include "examples/support/branch_directory.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/json_number.hpp"
@@ -33,7 +34,6 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/pattern_orientation_check.hpp"
-#include "studies/saved_state.hpp"
 #include "studies/turn_free_stability_index.hpp"
 
 namespace {
@@ -73,15 +73,9 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   if (std::filesystem::exists(path))
     throw std::invalid_argument(path + " exists: move it away to check again");
 
-  const std::string scene_file = std::filesystem::exists(dir + "/scene.json")
-                                     ? dir + "/scene.json"
-                                     : (std::filesystem::path(dir) / ".." / "scene.json").string();
-  const Scene scene = read_scene(scene_file);
+  const Scene scene = read_scene(examples::branch_scene_file(dir));
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
-  const std::optional<BranchSample> nearest =
-      nearest_saved_state(dir, phi, model.dimension(), scene_model_fingerprint(scene));
-  if (!nearest) throw std::invalid_argument(dir + "/states holds no saved state");
-  const BranchSample& state = *nearest;
+  const BranchSample state = examples::nearest_branch_state(dir, phi, scene, model.dimension());
 
   const ContactProxy proxy = make_contact_proxy(model, 1);
   const PatternOrientationCheckOptions studies = scene_orientation_check_options(scene, model, proxy);

@@ -11,7 +11,6 @@
 // other).
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iomanip>
 #include <limits>
 #include <numbers>
@@ -19,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "examples/support/branch_directory.hpp"
 #include "examples/support/directory_command_line.hpp"
 #include "examples/support/guarded_main.hpp"
 #include "libshell/contact/contact_penalty.hpp"
@@ -26,7 +26,6 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/pattern_orientation_check.hpp"
-#include "studies/saved_state.hpp"
 
 namespace {
 
@@ -60,18 +59,9 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   if (!(tolerance > 0.0 && std::isfinite(tolerance)) && tolerance != -1.0)
     throw std::invalid_argument("--tolerance must be finite and > 0");
 
-  // A branch of an econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned) has its scene
-  // one folder up.
-  const std::string scene_file = std::filesystem::exists(dir + "/scene.json")
-                                     ? dir + "/scene.json"
-                                     : (std::filesystem::path(dir) / ".." / "scene.json").string();
-  const Scene scene = read_scene(scene_file);
+  const Scene scene = read_scene(examples::branch_scene_file(dir));
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
-  const std::uint64_t fingerprint = scene_model_fingerprint(scene);
-  const std::optional<BranchSample> nearest =
-      nearest_saved_state(dir, phi, model.dimension(), fingerprint);
-  if (!nearest) throw std::invalid_argument(dir + "/states holds no saved state");
-  const BranchSample& state = *nearest;
+  const BranchSample state = examples::nearest_branch_state(dir, phi, scene, model.dimension());
 
   Scene checked = scene;
   checked.study.orientation_check_turns = turns_deg;

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "core/content_hash.hpp"
 #include "studies/atomic_file.hpp"
@@ -162,13 +163,35 @@ std::vector<std::filesystem::path> saved_state_files(const std::string& run_dir)
 std::optional<BranchSample> nearest_saved_state(const std::string& run_dir, double phi_e,
                                                 Eigen::Index n,
                                                 std::uint64_t expected_fingerprint) {
-  std::optional<BranchSample> nearest;
+  std::vector<BranchSample> nearest = nearest_saved_states(run_dir, {phi_e}, n, expected_fingerprint);
+  if (nearest.empty()) return std::nullopt;
+  return std::move(nearest.front());
+}
+
+std::vector<BranchSample> nearest_saved_states(const std::string& run_dir,
+                                               const std::vector<double>& phis_e, Eigen::Index n,
+                                               std::uint64_t expected_fingerprint) {
+  // For each excess angle asked for, the trace index of the nearest state so far and that state.
+  std::vector<std::optional<std::pair<std::size_t, BranchSample>>> nearest(phis_e.size());
+  std::size_t index = 0;
   for (const std::filesystem::path& file : saved_state_files(run_dir)) {
-    BranchSample s = load_branch_state(file.string(), n, expected_fingerprint);
-    if (!nearest || std::abs(s.parameter - phi_e) < std::abs(nearest->parameter - phi_e))
-      nearest = std::move(s);
+    const BranchSample s = load_branch_state(file.string(), n, expected_fingerprint);
+    for (std::size_t k = 0; k < phis_e.size(); ++k)
+      if (!nearest[k] ||
+          std::abs(s.parameter - phis_e[k]) < std::abs(nearest[k]->second.parameter - phis_e[k]))
+        nearest[k] = std::make_pair(index, s);
+    ++index;
   }
-  return nearest;
+  std::vector<std::pair<std::size_t, BranchSample>> chosen;
+  for (auto& n_k : nearest)
+    if (n_k && std::none_of(chosen.begin(), chosen.end(),
+                            [&](const auto& c) { return c.first == n_k->first; }))
+      chosen.push_back(std::move(*n_k));
+  std::sort(chosen.begin(), chosen.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<BranchSample> samples;
+  for (auto& c : chosen) samples.push_back(std::move(c.second));
+  return samples;
 }
 
 }  // namespace growshell

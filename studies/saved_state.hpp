@@ -56,4 +56,12 @@ std::optional<BranchSample> nearest_saved_state(const std::string& run_dir, doub
                                                 Eigen::Index n,
                                                 std::uint64_t expected_fingerprint = 0);
 
+/// The saved states of RUN_DIR nearest each of `phis_e` (each chosen as nearest_saved_state
+/// chooses it), each state once, in trace order; empty if RUN_DIR/states holds none. Every
+/// state is read once, and at most one per excess angle is held at a time. Throws as
+/// nearest_saved_state.
+std::vector<BranchSample> nearest_saved_states(const std::string& run_dir,
+                                               const std::vector<double>& phis_e, Eigen::Index n,
+                                               std::uint64_t expected_fingerprint = 0);
+
 }  // namespace growshell

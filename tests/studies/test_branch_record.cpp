@@ -181,6 +181,24 @@ TEST_F(BranchRecordTest, NearestSavedStateIsTheOneWithTheNearestExcessAngle) {
   EXPECT_THROW(nearest_saved_state(dir_.string(), 1.0, 5), std::runtime_error);  // another size
 }
 
+TEST_F(BranchRecordTest, NearestSavedStatesAreEachOnceInTraceOrder) {
+  fs::create_directories(path("states"));
+  EXPECT_TRUE(nearest_saved_states(dir_.string(), {1.0}, 6).empty());  // no state in it
+  {
+    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    for (const double phi : {0.5, 0.9, 1.3, 1.1}) record_sample(r, phi);
+  }
+  // 1.25 and 9 both take 1.3, the third state; 1.2 takes 1.1, the fourth; 0.8 takes 0.9.
+  const std::vector<BranchSample> s = nearest_saved_states(dir_.string(), {1.25, 1.2, 9.0, 0.8}, 6);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].parameter, 0.9);
+  EXPECT_EQ(s[1].parameter, 1.3);
+  EXPECT_EQ(s[2].parameter, 1.1);
+  EXPECT_EQ(s[1].x, Eigen::VectorXd::Constant(6, 1.3));
+  EXPECT_TRUE(nearest_saved_states(dir_.string(), {}, 6).empty());
+  EXPECT_THROW(nearest_saved_states(dir_.string(), {1.0}, 5), std::runtime_error);
+}
+
 TEST(SavedState, NamesAndTheirIndices) {
   EXPECT_EQ(saved_state_name(12), "point_00012.state");
   EXPECT_EQ(saved_state_index("point_00012.state"), 12);
