@@ -13,6 +13,7 @@
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
+#include "solvers/contact/penalty_warm_start.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
@@ -223,8 +224,11 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
     note(out.skewed_message);
     if (best.size() > 0 && options.verify_with_ipopt) {
       const auto t_ipopt = Clock::now();
-      const ContactSolveResult check = solve_contact_equilibrium(model, top.parameter, proxy, best,
-                                                                 pins, *options.verify_with_ipopt);
+      // Seeded with the penalty's own pair forces (penalty_warm_start.hpp).
+      const ContactSolveResult seed = penalty_warm_start(
+          proxy, near_penalty_pairs(proxy, best, o), best, o.contact_distance, o.stiffness);
+      const ContactSolveResult check = solve_contact_equilibrium(
+          model, top.parameter, proxy, best, pins, *options.verify_with_ipopt, &seed);
       out.ipopt_checked = true;
       out.ipopt_converged = check.converged;
       out.ipopt_message = check.message;

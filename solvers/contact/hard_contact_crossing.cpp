@@ -1,5 +1,7 @@
 #include "solvers/contact/hard_contact_crossing.hpp"
 
+#include "solvers/contact/penalty_warm_start.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -82,14 +84,11 @@ HardContactSample resolve(const ShellModel& model, const ContactProxy& proxy, co
     NearPairSelection selection;
     selection.edge_edge_pairs = false;
     selection.nearest_triangle_only = o.solve.nearest_triangle_only;
-    penalty.pairs =
+    penalty = penalty_warm_start(
+        proxy,
         near_contact_pairs(proxy, s.x, o.solve.contact_distance + o.solve.candidate_margin,
-                           o.solve.exclusion_radius, selection);
-    const ContactGapConstraints gaps(proxy, penalty.pairs, o.solve.contact_distance,
-                                     model.dimension(), o.solve.gap);
-    penalty.forces.resize(gaps.count());
-    for (Eigen::Index k = 0; k < gaps.count(); ++k)
-      penalty.forces(k) = o.penalty_stiffness * std::max(0.0, -gaps.pair_geometry(s.x, k).gap);
+                           o.solve.exclusion_radius, selection),
+        s.x, o.solve.contact_distance, o.penalty_stiffness);
   }
   ContactSolveResult r = solve_contact_equilibrium(model, s.parameter, proxy, s.x, fixed, o.solve,
                                                    o.penalty_stiffness > 0.0 ? &penalty : nullptr);
