@@ -26,11 +26,15 @@
 #include "examples/support/guarded_main.hpp"
 #include "examples/support/json_number.hpp"
 #include "libshell/analysis/cone_symmetry.hpp"
+#include "libshell/analysis/contact_zones.hpp"
+#include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/io/scene.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/hard_contact_solve_options.hpp"
+#include "solvers/contact/penalty_warm_start.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/pattern_orientation_check.hpp"
@@ -42,6 +46,9 @@ using namespace growshell;
 
 const char* kUsage = R"(usage: hard_contact_at RUN_DIR --phi P
   --phi P    the saved state nearest this excess angle is re-solved (required)
+  --ipopt-print-level N
+             Ipopt's own iteration log on stdout, 0..12 (default 0: none; 5 shows each
+             iteration's objective, infeasibilities and barrier parameter)
 RUN_DIR: a cone_branch study's directory (scene.json, states/), or a branch of an
 econe_contact study (DIR/symmetric, DIR/skewed, DIR/turned: states/, the scene in DIR).
 The hard constraints use the scene's contact distance and exclusion radius, with edge-edge
@@ -49,12 +56,16 @@ pairs as well as vertex-triangle ones; the Newton settings are the studies' rela
 (scene_orientation_check_options). Prints the comparison and writes
 RUN_DIR/hard_contact_phi<P>.json with:
   phi_e, unknowns, converged, message, seconds,
+  rounds, iterations (Ipopt's, over the rounds of pair sets),
   penalty_elastic_energy, hard_elastic_energy (J, E_s + E_b),
   relative_energy_difference ((penalty - hard) / hard),
   state_difference_over_h (max |x_hard - x_penalty| / h),
   penalty_min_distance_over_h, hard_min_distance_over_h (smallest pair distance beyond the
   exclusion radius, over h),
-  penalty_s4_defect, hard_s4_defect
+  penalty_s4_defect, hard_s4_defect,
+  penalty_gamma, hard_gamma (radians: the angle between the planes of the two largest
+  contact zones, from the penalty's pair forces k (h - d)_+ and from Ipopt's multipliers;
+  null with fewer than two zones)
 )";
 
 // The smallest distance over the vertex-triangle and edge-edge pairs of `x` nearer than
@@ -67,7 +78,10 @@ double smallest_distance(const ContactProxy& proxy, const Eigen::VectorXd& x,
 int run(const std::string& dir, examples::CommandLine& cl) {
   const std::string phi_text = cl.text("--phi", "");
   const double phi = cl.number("--phi", std::numeric_limits<double>::quiet_NaN());
+  const int print_level = cl.integer("--ipopt-print-level", 0);
   cl.reject_unknown();
+  if (print_level < 0 || print_level > 12)
+    throw std::invalid_argument("--ipopt-print-level must lie in 0..12");
   if (!std::isfinite(phi)) throw std::invalid_argument("--phi is required (a finite excess angle)");
   const std::string path = dir + "/hard_contact_phi" + phi_text + ".json";
   if (std::filesystem::exists(path))
@@ -81,9 +95,10 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   const PatternOrientationCheckOptions studies = scene_orientation_check_options(scene, model, proxy);
   const ContactBranchOptions& penalty = studies.contact;
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
-  const ContactSolveOptions options =
+  ContactSolveOptions options =
       hard_contact_solve_options(model, h, penalty.contact_distance, penalty.exclusion_radius,
                                  penalty.candidate_margin, studies.relaxation);
+  options.minimizer.print_level = print_level;
   const Eigen::VectorXd& X = model.reference_positions();
   const auto pinned = mirror_axis_pinned_dofs(
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3),
@@ -95,8 +110,12 @@ int run(const std::string& dir, examples::CommandLine& cl) {
               dir.c_str(), state.parameter, static_cast<long long>(model.dimension()),
               options.contact_distance, options.exclusion_radius);
   const auto start = std::chrono::steady_clock::now();
+  // The penalty's own pairs and pair forces seed the constraints' multipliers.
+  const ContactSolveResult warm =
+      penalty_warm_start(proxy, near_penalty_pairs(proxy, state.x, penalty), state.x,
+                         penalty.contact_distance, penalty.stiffness);
   const ContactSolveResult hard =
-      solve_contact_equilibrium(model, state.parameter, proxy, state.x, pins, options);
+      solve_contact_equilibrium(model, state.parameter, proxy, state.x, pins, options, &warm);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -107,6 +126,17 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   const double reach = 2.0 * penalty.contact_distance;
   const double d_penalty = smallest_distance(proxy, state.x, penalty.exclusion_radius, reach);
   const double d_hard = smallest_distance(proxy, hard.x, penalty.exclusion_radius, reach);
+  // gamma from each solution's own pair forces: the penalty's k (h - d)_+, Ipopt's multipliers.
+  const double gamma_penalty = cone_contact_plane_angle(
+      ContactGapConstraints(proxy, warm.pairs, penalty.contact_distance, model.dimension()),
+      state.x, warm.forces, scene.geometry.radius);
+  const double gamma_hard =
+      hard.forces.size() == 0
+          ? std::numeric_limits<double>::quiet_NaN()
+          : cone_contact_plane_angle(ContactGapConstraints(proxy, hard.pairs,
+                                                           options.contact_distance,
+                                                           model.dimension(), options.gap),
+                                     hard.x, hard.forces, scene.geometry.radius);
   const auto s4 = [&](const Eigen::VectorXd& x) {
     try {
       return measure_cone_symmetry(model, x).s4.defect;
@@ -123,6 +153,8 @@ int run(const std::string& dir, examples::CommandLine& cl) {
        << "  \"converged\": " << (hard.converged ? "true" : "false") << ",\n"
        << "  \"message\": \"" << hard.message << "\",\n"
        << "  \"seconds\": " << json_number(seconds) << ",\n"
+       << "  \"rounds\": " << hard.rounds << ",\n"
+       << "  \"iterations\": " << hard.iterations << ",\n"
        << "  \"penalty_elastic_energy\": " << json_number(e_penalty) << ",\n"
        << "  \"hard_elastic_energy\": " << json_number(e_hard) << ",\n"
        << "  \"relative_energy_difference\": " << json_number((e_penalty - e_hard) / e_hard) << ",\n"
@@ -131,7 +163,9 @@ int run(const std::string& dir, examples::CommandLine& cl) {
        << "  \"penalty_min_distance_over_h\": " << json_number(d_penalty / h) << ",\n"
        << "  \"hard_min_distance_over_h\": " << json_number(d_hard / h) << ",\n"
        << "  \"penalty_s4_defect\": " << json_number(s4(state.x)) << ",\n"
-       << "  \"hard_s4_defect\": " << json_number(s4(hard.x)) << "\n}\n";
+       << "  \"hard_s4_defect\": " << json_number(s4(hard.x)) << ",\n"
+       << "  \"penalty_gamma\": " << json_number(gamma_penalty) << ",\n"
+       << "  \"hard_gamma\": " << json_number(gamma_hard) << "\n}\n";
   write_file_atomically(path, json.str());
   std::printf("%s", json.str().c_str());
   std::printf("# wrote %s\n", path.c_str());

@@ -340,10 +340,7 @@ double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
   if (!s.pairs.empty() && s.active_pairs > 0) {
     const ContactGapConstraints gaps(*proxy_, s.pairs, options_.contact.contact_distance,
                                      model_->dimension(), options_.contact.gap);
-    // Zones: pairs within 0.1 R of each other whose normals differ by less than 30 degrees, so
-    // that the upper and lower contact of the cone, which meet at the apex, stay apart.
-    gamma = contact_plane_angle(contact_zones(
-        gaps, s.sample.x, s.forces, 0.1 * scene_.geometry.radius, 1e-3, std::numbers::pi / 6));
+    gamma = cone_contact_plane_angle(gaps, s.sample.x, s.forces, scene_.geometry.radius);
     force = s.forces.sum();
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -110,4 +110,13 @@ double contact_plane_angle(const std::vector<ContactZone>& zones) {
   return std::acos(std::min(1.0, std::abs(zones[0].normal.dot(zones[1].normal))));
 }
 
+double cone_contact_plane_angle(const ContactGapConstraints& constraints,
+                                const Eigen::Ref<const Eigen::VectorXd>& x,
+                                const Eigen::Ref<const Eigen::VectorXd>& forces, double radius) {
+  if (forces.size() == 0 || !(forces.maxCoeff() > 0.0))
+    return std::numeric_limits<double>::quiet_NaN();
+  return contact_plane_angle(
+      contact_zones(constraints, x, forces, 0.1 * radius, 1e-3, std::numbers::pi / 6));
+}
+
 }  // namespace growshell

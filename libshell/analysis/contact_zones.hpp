@@ -41,4 +41,13 @@ std::vector<ContactZone> contact_zones(const ContactGapConstraints& constraints,
 /// there are fewer than two zones.
 double contact_plane_angle(const std::vector<ContactZone>& zones);
 
+/// gamma of an e-cone of radius `radius` (m) in contact (../shared/docs/physics.md): the angle
+/// between the planes of its two largest zones, with the zones every growshell program and
+/// study measures it on: pairs with more than 1e-3 of the largest force, linked within
+/// 0.1 radius, with normals within 30 degrees of each other (so that the upper and lower
+/// contact, which meet at the apex, stay apart). NaN with fewer than two zones or no force.
+double cone_contact_plane_angle(const ContactGapConstraints& constraints,
+                                const Eigen::Ref<const Eigen::VectorXd>& x,
+                                const Eigen::Ref<const Eigen::VectorXd>& forces, double radius);
+
 }  // namespace growshell

@@ -124,6 +124,23 @@ TEST(ContactZones, TwoZonesWithKnownForcesNormalsAndAngle) {
   EXPECT_THROW(contact_zones(gaps, x, z.forces, 0.5, 1e-3, 2.0), std::invalid_argument);
 }
 
+// cone_contact_plane_angle: the zones of contact_zones with a link of 0.1 radius, the active
+// fraction 1e-3 and 30 degrees between normals. With radius 5 (link 0.5 m) these are the two
+// zones above, and gamma is their planes' angle; with radius 3 (link 0.3 m) zone A falls
+// apart into its three pairs, the two largest of which (+z and -z) lie in one plane.
+TEST(ContactZones, ConePlaneAngleUsesTheStudiesZones) {
+  const ZoneScene z;
+  const ContactProxy proxy = identity_proxy(z.points, z.triangles);
+  const Eigen::VectorXd x = flatten(z.points);
+  ContactGapConstraints gaps(proxy, z.pairs, 0.05, x.size());
+  EXPECT_EQ(cone_contact_plane_angle(gaps, x, z.forces, 5.0),
+            contact_plane_angle(contact_zones(gaps, x, z.forces, 0.5, 1e-3, kPi / 6)));
+  const Eigen::Vector3d normal_b = (0.7 * z.n1 + 0.25 * z.n2).normalized();
+  EXPECT_NEAR(cone_contact_plane_angle(gaps, x, z.forces, 5.0), std::acos(normal_b.z()), 1e-12);
+  EXPECT_NEAR(cone_contact_plane_angle(gaps, x, z.forces, 3.0), 0.0, 1e-12);
+  EXPECT_TRUE(std::isnan(cone_contact_plane_angle(gaps, x, Eigen::VectorXd::Zero(7), 5.0)));
+}
+
 // A mollified edge-edge pair pushes with multiplier * mollifier (ContactPairGeometry), and
 // that is the force a zone sums and weights its normal with. Edge P along x at height 0.3
 // over edge Q at angle alpha = 0.02 in z = 0 (both of length 2): r = sin^2(alpha) / 1e-3 =
