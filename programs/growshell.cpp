@@ -60,6 +60,9 @@ Studies (scene key study.kind):
                contact, the symmetric branch with the contact penalty, the skewed cone, and
                phi_e^crit by stability and by energy (the paper's Fig. 4 at one thickness;
                docs/guide/econe_contact.md)
+  series       the cone_branch or econe_contact study at each value of one scene key, with
+               chosen results against it (e.g. the rings' phi_e^kiss against their inner
+               radius, the paper's Table 1; docs/guide/series.md)
 
 Scene files: docs/scenes.md (every key); examples/scenes/disc_h002.json (the default scene).
 )";
@@ -107,9 +110,17 @@ Studies (study.kind):
                DIR/symmetric/ and DIR/skewed/ (branch records with contact), scene.json and
                econe_contact.png; --resume goes on with the cone from its last state and
                traces the branches with contact again
+  series       scene keys: those of the study it runs, study.series_key (a scene key),
+               study.series_values (numbers), study.series_of (cone_branch or
+               econe_contact), study.series_report (keys of the points' results.json)
+               (docs/guide/series.md)
+               writes DIR/results.json (each point's reported values), series.csv,
+               series.png, and DIR/point_NNN/, one study per value (with
+               DIR/sweep_plan.json, sweep.json and sweep.csv); --resume goes on with the
+               values not yet finished
 
 The figure (DIR/eb_hat.png, plot_study.py; DIR/thickness_series.png, plot_thickness_series.py;
-DIR/econe_contact.png, plot_econe_contact.py)
+DIR/econe_contact.png, plot_econe_contact.py; DIR/series.png, plot_series.py)
 is drawn with /usr/bin/python3 (the environment variable GROWSHELL_PYTHON names another
 interpreter) when it can import matplotlib; otherwise it is skipped with a note, and the study
 stands.
@@ -313,6 +324,8 @@ int run_study(const RunCommand& c) {
     draw_figure("plot_thickness_series.py", dir, "thickness_series.png");
   else if (scene.study.kind == StudyKind::EconeContact)
     draw_figure("plot_econe_contact.py", dir, "econe_contact.png");
+  else if (scene.study.kind == StudyKind::Series)
+    draw_figure("plot_series.py", dir, "series.png");
   else
     draw_figure("plot_study.py", dir, "eb_hat.png");
   if (!outcome.completed) {

@@ -156,6 +156,10 @@ Scene sweep_point_scene(const Scene& base, const SweepPoint& point, const std::s
     throw std::invalid_argument(
         "a thickness_series scene cannot be swept: it is itself a sweep over thickness; sweep "
         "the cone_branch study (study.kind = \"cone_branch\") instead");
+  if (base.study.kind == StudyKind::Series)
+    throw std::invalid_argument(
+        "a series scene cannot be swept: it is itself a sweep over study.series_key; sweep the "
+        "study it runs (study.kind = study.series_of) instead");
   Scene scene = base;
   try {
     for (const auto& [key, value] : point.settings) apply_override(scene, key, value);

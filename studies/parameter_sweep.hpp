@@ -50,7 +50,7 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepParameter>& paramete
 /// The scene of a point: `base` with the point's settings applied (apply_override) and
 /// output.directory = sweep_dir/point.directory, validated. Throws std::invalid_argument
 /// naming the point's settings and the key at fault, or saying that a thickness_series base
-/// scene (a sweep itself) cannot be swept.
+/// scene or a series scene (each a sweep itself) cannot be swept.
 Scene sweep_point_scene(const Scene& base, const SweepPoint& point, const std::string& sweep_dir);
 
 /// How a point ended.

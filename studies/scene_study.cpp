@@ -4,6 +4,7 @@
 
 #include "studies/cone_branch_study.hpp"
 #include "studies/econe_contact_study.hpp"
+#include "studies/series_study.hpp"
 #include "studies/thickness_series_study.hpp"
 
 namespace growshell {
@@ -18,6 +19,9 @@ void check_scene_study_directory(const Scene& scene, ExistingOutput existing) {
       return;
     case StudyKind::EconeContact:
       check_econe_contact_directory(scene.output.directory, existing);
+      return;
+    case StudyKind::Series:
+      check_series_directory(scene.output.directory, existing);
       return;
   }
   throw std::logic_error("check_scene_study_directory: a study kind without a directory check");
@@ -41,6 +45,10 @@ SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,
     }
     case StudyKind::EconeContact: {
       const EconeContactResults results = run_econe_contact_study(scene, existing, progress);
+      return {results.completed, results.end};
+    }
+    case StudyKind::Series: {
+      const SeriesResults results = run_series_study(scene, existing, progress);
       return {results.completed, results.end};
     }
   }

@@ -66,7 +66,8 @@ const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
 const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"},
                                               {StudyKind::ThicknessSeries, "thickness_series"},
-                                              {StudyKind::EconeContact, "econe_contact"}};
+                                              {StudyKind::EconeContact, "econe_contact"},
+                                              {StudyKind::Series, "series"}};
 
 template <class Enum>
 std::string enum_name(const NameTable<Enum>& names, Enum value) {
@@ -140,6 +141,16 @@ std::vector<double> read_number_list(const Json& v, const std::string& key) {
   for (const Json& e : v) {
     if (!e.is_number()) fail(key + " must be an array of numbers (got " + v.dump() + ")");
     values.push_back(e.get<double>());
+  }
+  return values;
+}
+
+std::vector<std::string> read_string_list(const Json& v, const std::string& key) {
+  if (!v.is_array()) fail(key + " must be an array of strings (got " + v.dump() + ")");
+  std::vector<std::string> values;
+  for (const Json& e : v) {
+    if (!e.is_string()) fail(key + " must be an array of strings (got " + v.dump() + ")");
+    values.push_back(e.get<std::string>());
   }
   return values;
 }
@@ -343,6 +354,18 @@ const Field kFields[] = {
   {"study.phi_max_limit",
    [](Scene& s, const Json& v, const std::string& k) { s.study.phi_max_limit = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.phi_max_limit); }},
+  {"study.series_key",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.series_key = read_string(v, k); },
+   [](const Scene& s) { return Json(s.study.series_key); }},
+  {"study.series_values",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.series_values = read_number_list(v, k); },
+   [](const Scene& s) { return Json(s.study.series_values); }},
+  {"study.series_of",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.series_of = read_enum(v, k, kStudyKindNames); },
+   [](const Scene& s) { return Json(enum_name(kStudyKindNames, s.study.series_of)); }},
+  {"study.series_report",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.series_report = read_string_list(v, k); },
+   [](const Scene& s) { return Json(s.study.series_report); }},
   {"study.skew_search_at",
    [](Scene& s, const Json& v, const std::string& k) { s.study.skew_search_at = read_number_or_auto(v, k); },
    [](const Scene& s) { return write_number_or_auto(s.study.skew_search_at); }},
@@ -449,6 +472,48 @@ void validate_thickness(const ThicknessProfile& profile) {
 }  // namespace
 
 Scene default_scene() { return Scene{}; }
+
+namespace {
+
+/// The series keys: complete for study.kind series, absent for every other study.
+void validate_series(const SceneStudy& st) {
+  if (st.kind != StudyKind::Series) {
+    if (!st.series_key.empty() || !st.series_values.empty() || !st.series_report.empty() ||
+        st.series_of != StudyKind::ConeBranch)
+      fail("study.series_key, series_values, series_of and series_report are read only by "
+           "study.kind = \"series\" (this scene's study is \"" +
+           enum_name(kStudyKindNames, st.kind) + "\")");
+    return;
+  }
+  if (st.series_key.empty()) fail("study.series_key must name the scene key the series varies");
+  const bool own = st.series_key == "study.kind" || st.series_key.rfind("study.series_", 0) == 0 ||
+                   st.series_key.rfind("output.", 0) == 0;
+  if (own || !find_field(st.series_key))
+    fail("study.series_key = \"" + st.series_key + "\" must be a scene key of docs/scenes.md other "
+         "than study.kind, study.series_* and output.*");
+  if (st.series_values.empty()) fail("study.series_values must list at least one value");
+  for (std::size_t i = 0; i < st.series_values.size(); ++i) {
+    const std::string key = "study.series_values[" + std::to_string(i) + "]";
+    require_finite(st.series_values[i], key);
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.series_values[j] == st.series_values[i])
+        fail(key + " = " + format(st.series_values[i]) + " is listed twice");
+  }
+  if (st.series_of != StudyKind::ConeBranch && st.series_of != StudyKind::EconeContact)
+    fail("study.series_of = \"" + enum_name(kStudyKindNames, st.series_of) +
+         "\" must be \"cone_branch\" or \"econe_contact\"");
+  if (st.series_report.empty())
+    fail("study.series_report must list at least one key of the points' results.json");
+  for (std::size_t i = 0; i < st.series_report.size(); ++i) {
+    const std::string key = "study.series_report[" + std::to_string(i) + "]";
+    if (st.series_report[i].empty()) fail(key + " is empty");
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.series_report[j] == st.series_report[i])
+        fail(key + " = \"" + st.series_report[i] + "\" is listed twice");
+  }
+}
+
+}  // namespace
 
 void validate_scene(const Scene& scene) {
   const SceneGeometry& g = scene.geometry;
@@ -559,6 +624,7 @@ void validate_scene(const Scene& scene) {
     fail("study.thicknesses is read only by study.kind = \"thickness_series\"; the study \"" +
          enum_name(kStudyKindNames, st.kind) + "\" takes its thickness from the key thickness");
   }
+  validate_series(st);
 }
 
 Scene read_scene(const std::string& path) {

@@ -200,9 +200,15 @@ enum class StudyKind {
   /// first contact, then the symmetric branch with the contact penalty, the skewed branch and
   /// phi_e^crit both ways (studies/econe_contact_study.hpp, docs/guide/econe_contact.md).
   EconeContact,
+  /// One study (study.series_of) at each value of one scene key (study.series_key,
+  /// study.series_values), with chosen key values of its results against it
+  /// (studies/series_study.hpp, docs/guide/series.md): e.g. the rings' phi_e^kiss against
+  /// their inner radius (the paper's Table 1).
+  Series,
 };
 
-/// The study's name in scene files: "cone_branch", "thickness_series" or "econe_contact".
+/// The study's name in scene files: "cone_branch", "thickness_series", "econe_contact" or
+/// "series".
 std::string study_kind_name(StudyKind kind);
 
 /// The study a scene asks for and those of its settings that change its results (the
@@ -247,6 +253,16 @@ struct SceneStudy {
   /// thickness_series only: the h -> 0 value of phi_e^max (rad) that the fit
   /// phi_e^max - L = A h^p approaches: 2.57, the h -> 0 cone's (../shared/docs/physics.md).
   double phi_max_limit = 2.57;
+  /// series only: the scene key that varies (a key of docs/scenes.md other than study.kind,
+  /// study.series_* and output.*), e.g. "geometry.inner_radius".
+  std::string series_key;
+  /// series only: its values, in the order they run; at least one, finite, no two equal.
+  std::vector<double> series_values;
+  /// series only: the study run at each value: cone_branch or econe_contact.
+  StudyKind series_of = StudyKind::ConeBranch;
+  /// series only: the keys of each point's results.json (numbers or null) tabulated and
+  /// plotted against the varying key; at least one, no two equal.
+  std::vector<std::string> series_report;
   /// econe_contact only: the symmetric state pushed along its lowest modes and relaxed to find
   /// the skewed cone is the symmetric branch's first sample at or beyond this phi_e (rad, > 0);
   /// unset ("auto"): its last sample (continuation.phi_max).

@@ -787,6 +787,61 @@ TEST(Scene, ThicknessSeriesReadsItsThicknessesAndRefusesBadLists) {
   EXPECT_EQ(over.study.thicknesses.back(), 0.015);
 }
 
+TEST(Scene, SeriesReadsItsKeysAndRefusesBadOnesByName) {
+  const Scene s = parse_scene(
+      R"({"geometry": {"shape": "ring"},
+          "study": {"kind": "series", "series_key": "geometry.inner_radius",
+                    "series_values": [0.1, 0.3], "series_of": "econe_contact",
+                    "series_report": ["phi_kiss", "phi_crit_stability"]}})",
+      "test");
+  EXPECT_EQ(s.study.kind, StudyKind::Series);
+  EXPECT_EQ(s.study.series_key, "geometry.inner_radius");
+  EXPECT_EQ(s.study.series_values, (std::vector<double>{0.1, 0.3}));
+  EXPECT_EQ(s.study.series_of, StudyKind::EconeContact);
+  EXPECT_EQ(s.study.series_report, (std::vector<std::string>{"phi_kiss", "phi_crit_stability"}));
+  const Scene again = parse_scene(scene_to_json(s), "round trip");
+  EXPECT_EQ(again.study.series_key, s.study.series_key);
+  EXPECT_EQ(again.study.series_values, s.study.series_values);
+  EXPECT_EQ(again.study.series_of, s.study.series_of);
+  EXPECT_EQ(again.study.series_report, s.study.series_report);
+  EXPECT_EQ(study_kind_name(again.study.kind), "series");
+
+  using test_support::error_of;
+  const auto series = [](const std::string& study) {
+    return [study] {
+      parse_scene(R"({"study": {"kind": "series", "series_of": "cone_branch", )" + study + "}}", "t");
+    };
+  };
+  const std::string good_values = R"("series_values": [0.02, 0.04], "series_report": ["phi_max"])";
+  const auto has = [](const std::string& error, const std::string& part) {
+    return error.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(has(error_of(series(good_values)), "study.series_key must name"));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "output.directory", )" + good_values)),
+                  "study.series_key = \"output.directory\""));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "study.series_values", )" + good_values)),
+                  "other than study.kind"));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "no.such", )" + good_values)),
+                  "study.series_key = \"no.such\""));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "thickness", "series_values": [], "series_report": ["phi_max"])")),
+                  "study.series_values must list"));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "thickness", "series_values": [0.02, 0.02], "series_report": ["phi_max"])")),
+                  "study.series_values[1] = 0.02 is listed twice"));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "thickness", "series_values": [0.02], "series_report": [])")),
+                  "study.series_report must list"));
+  EXPECT_TRUE(has(error_of(series(R"("series_key": "thickness", "series_values": [0.02], "series_report": ["a", "a"])")),
+                  "study.series_report[1] = \"a\" is listed twice"));
+  EXPECT_TRUE(has(error_of([] {
+                    parse_scene(R"({"study": {"kind": "series", "series_key": "thickness",
+                                    "series_values": [0.02], "series_report": ["phi_max"],
+                                    "series_of": "thickness_series"}})", "t");
+                  }),
+                  "study.series_of = \"thickness_series\" must be"));
+  // Another study would ignore them: refused.
+  EXPECT_TRUE(has(error_of([] { parse_scene(R"({"study": {"series_key": "thickness"}})", "t"); }),
+                  "read only by study.kind = \"series\""));
+}
+
 TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
   EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
   const Scene s = parse_scene(
