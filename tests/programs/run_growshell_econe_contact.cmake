@@ -168,9 +168,16 @@ if(HARD_CONTACT_PROGRAM)
     message(FATAL_ERROR "hard_contact_at failed (${rc}):\n${log}\n${err}")
   endif()
   file(READ "${OUT}/run/turned/hard_contact_phi7.0.json" hard)
-  foreach(key converged relative_energy_difference hard_min_distance_over_h hard_s4_defect)
+  foreach(key converged relative_energy_difference hard_min_distance_over_h hard_s4_defect
+              hard_gamma)
     string(JSON ${key} GET "${hard}" ${key})
   endforeach()
+  # gamma from Ipopt's multipliers: the two contact planes stay near perpendicular at 7.0
+  # (measured 1.562 on this mesh; 1.557 and 1.562 on the two default meshes).
+  if(hard_gamma LESS 1.50 OR hard_gamma GREATER 1.5708)
+    message(FATAL_ERROR "gamma under the hard constraints at 7.0 is ${hard_gamma}, not in "
+                        "[1.50, pi/2]:\n${hard}")
+  endif()
   if(NOT converged OR hard_min_distance_over_h LESS 0.99 OR relative_energy_difference LESS -0.01
      OR relative_energy_difference GREATER 0 OR NOT hard_s4_defect GREATER 3e-3)
     message(FATAL_ERROR "under the hard constraints the turned cone at 7.0 is not the penalty's "
