@@ -684,8 +684,10 @@ Scene econe_contact_cone_scene(const Scene& scene) {
   return cone;
 }
 
+std::string econe_contact_record_file() { return std::string(kConeDir) + "/record.json"; }
+
 void check_econe_contact_directory(const std::string& directory, ExistingOutput existing) {
-  check_output_directory(directory, existing, "study", std::string(kConeDir) + "/record.json");
+  check_output_directory(directory, existing, "study", econe_contact_record_file());
 }
 
 EconeContactResults run_econe_contact_study(const Scene& scene, ExistingOutput existing,

@@ -36,6 +36,10 @@ namespace growshell {
 /// at first contact, writing into DIR/cone.
 Scene econe_contact_cone_scene(const Scene& scene);
 
+/// "cone/record.json": the record of the study's first stage, whose presence in DIR means the
+/// study has begun and can be resumed (check_econe_contact_directory requires it to resume).
+std::string econe_contact_record_file();
+
 /// Throws std::invalid_argument, naming the directory and what to do, if the study may not use
 /// `directory` under `existing` (check_output_directory; resumable where DIR/cone holds a
 /// branch record). Writes nothing.

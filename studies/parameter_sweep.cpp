@@ -178,7 +178,9 @@ SweepPointResult run_sweep_point(const Scene& point_scene, const StudyProgress& 
   const std::string results = dir + "/results.json";
   try {
     if (!fs::exists(results)) {
-      const bool recorded = fs::exists(dir + "/record.json");
+      // A run that has begun (its record exists, e.g. cone/record.json of econe_contact)
+      // goes on from its last committed state; anything else starts afresh.
+      const bool recorded = fs::exists(dir + "/" + scene_study_record_file(point_scene));
       run_scene_study(point_scene, recorded ? ExistingOutput::Resume : ExistingOutput::Overwrite,
                       progress);
     }

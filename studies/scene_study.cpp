@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/econe_contact_study.hpp"
 #include "studies/series_study.hpp"
@@ -25,6 +26,19 @@ void check_scene_study_directory(const Scene& scene, ExistingOutput existing) {
       return;
   }
   throw std::logic_error("check_scene_study_directory: a study kind without a directory check");
+}
+
+std::string scene_study_record_file(const Scene& scene) {
+  switch (scene.study.kind) {
+    case StudyKind::ConeBranch:
+      return BranchRecord::kRecordFileName;
+    case StudyKind::EconeContact:
+      return econe_contact_record_file();
+    case StudyKind::ThicknessSeries:
+    case StudyKind::Series:
+      return "sweep_plan.json";
+  }
+  throw std::logic_error("scene_study_record_file: a study kind without a record");
 }
 
 SceneStudyOutcome run_scene_study(const Scene& scene, ExistingOutput existing,

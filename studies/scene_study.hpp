@@ -26,6 +26,12 @@ struct SceneStudyOutcome {
 /// econe_contact. Writes nothing.
 void check_scene_study_directory(const Scene& scene, ExistingOutput existing);
 
+/// The file, relative to scene.output.directory, whose presence means that a run of the study
+/// of `scene` has begun and can be resumed: record.json (cone_branch), cone/record.json
+/// (econe_contact), sweep_plan.json (thickness_series, series). A sweep resumes a point that
+/// has it and no results.json.
+std::string scene_study_record_file(const Scene& scene);
+
 /// Validates `scene`, checks scene.output.directory under `existing`
 /// (check_scene_study_directory), and runs the study scene.study.kind names there: from the start, or (Resume) on from the
 /// last state the recorded study committed. Writes what the study writes (for cone_branch,

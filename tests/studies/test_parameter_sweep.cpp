@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "studies/parameter_sweep.hpp"
+#include "studies/scene_study.hpp"
 #include "studies/scratch_directory.hpp"
 #include "tests/support/error_message.hpp"
 
@@ -101,6 +102,38 @@ TEST_F(ParameterSweepFiles, OpeningRefusesBadValuesUsedDirectoriesAndOtherPlans)
   EXPECT_FALSE(fs::exists(fs::path(dir) / "point_000"));
   EXPECT_TRUE(fs::exists(fs::path(dir) / "notes.txt"));
   EXPECT_NO_THROW(open_sweep_directory(dir, changed, other, ExistingOutput::Resume));
+}
+
+TEST(SceneStudyRecord, EachStudyNamesTheFileThatMakesItResumable) {
+  Scene s = default_scene();
+  EXPECT_EQ(scene_study_record_file(s), "record.json");
+  s.study.kind = StudyKind::EconeContact;
+  EXPECT_EQ(scene_study_record_file(s), "cone/record.json");
+  s.study.kind = StudyKind::ThicknessSeries;
+  EXPECT_EQ(scene_study_record_file(s), "sweep_plan.json");
+  s.study.kind = StudyKind::Series;
+  EXPECT_EQ(scene_study_record_file(s), "sweep_plan.json");
+}
+
+// A killed econe_contact point keeps its record in point_NNN/cone/: the sweep resumes it (here
+// the record is not one, so the resume fails and says so) instead of running it afresh over
+// what it had traced.
+TEST_F(ParameterSweepFiles, AnEconeContactPointWithARecordIsResumedNotRestarted) {
+  Scene base = default_scene();
+  base.study.kind = StudyKind::EconeContact;
+  const std::vector<SweepParameter> parameters{parse_sweep_parameter("thickness=0.04")};
+  const SweepPoint point = sweep_points(parameters).front();
+  const Scene scene = sweep_point_scene(base, point, path("sweep"));
+  const fs::path cone = fs::path(scene.output.directory) / "cone";
+  fs::create_directories(cone);
+  std::ofstream(cone / "record.json") << "not a record\n";
+  const SweepPointResult r = run_sweep_point(scene);
+  EXPECT_EQ(r.status, SweepPointResult::Status::Failed);
+  EXPECT_NE(r.reason.find("scene.json"), std::string::npos) << r.reason;
+  std::ifstream in(cone / "record.json");
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first, "not a record");
 }
 
 TEST_F(ParameterSweepFiles, APlanWrittenBeforeAKeyExistedResumesWithThatKeysDefault) {
