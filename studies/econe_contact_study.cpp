@@ -22,6 +22,7 @@
 #include "solvers/contact/hard_contact_solve_options.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
+#include "studies/hard_contact_check.hpp"
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
@@ -81,6 +82,7 @@ class EconeContactRun {
   void record_special(const char* branch, BranchRecord& record, const SpecialPoint& sp);
   void summarize(const EconeBranchResult& traced);
   void trace_turned();
+  void check_hard_contact_points();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
   }
@@ -612,6 +614,41 @@ void EconeContactRun::trace_turned() {
   results_.turned = std::move(t);
 }
 
+/// Stage 6 (study.hard_contact_at): the saved state nearest each requested phi_e of the turned
+/// and the symmetric branch, solved again under Ipopt's hard constraints and compared with the
+/// penalty's (studies/hard_contact_check.hpp); each check to BRANCH/hard_contact_phiP.json.
+void EconeContactRun::check_hard_contact_points() {
+  for (const double at : scene_.study.hard_contact_at) {
+    for (const char* branch : {"turned", "symmetric"}) {
+      const std::string branch_dir = dir_ + "/" + branch;
+      if (!fs::exists(fs::path(branch_dir) / "states")) continue;  // no turned branch traced
+      const std::optional<BranchSample> state =
+          nearest_saved_state(branch_dir, at, model_->dimension(), fingerprint_);
+      if (!state) continue;
+      say("# stage 6: the " + std::string(branch) + " branch at phi_e = " +
+          fixed(state->parameter, 6) + " under Ipopt's hard contact constraints");
+      EconeHardContactPoint p;
+      p.branch = branch;
+      p.at = at;
+      std::ostringstream name;
+      name << branch << "/hard_contact_phi" << std::setprecision(10) << at << ".json";
+      p.file = name.str();
+      p.check = check_hard_contact(scene_, *model_, *proxy_, *state);
+      write_file_atomically(dir_ + "/" + p.file, hard_contact_check_json(p.check));
+      std::ostringstream line;
+      line << "#   " << (p.check.converged ? "converged" : "not converged") << " ("
+           << p.check.message << "), " << p.check.iterations << " iterations, "
+           << fixed(p.check.seconds, 1) << " s; elastic energy hard - penalty "
+           << std::setprecision(3) << -100.0 * p.check.relative_energy_difference
+           << " %, S4 defect " << p.check.penalty_s4_defect << " -> " << p.check.hard_s4_defect
+           << ", gamma " << p.check.penalty_gamma << " -> " << p.check.hard_gamma;
+      say(line.str());
+      p.check.x.resize(0);  // results.json keeps the comparison, not the state
+      results_.hard_contact.push_back(std::move(p));
+    }
+  }
+}
+
 EconeContactResults EconeContactRun::run() {
   const auto started = std::chrono::steady_clock::now();
   fs::create_directories(dir_);
@@ -655,6 +692,7 @@ EconeContactResults EconeContactRun::run() {
       *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
   summarize(traced);
   trace_turned();
+  check_hard_contact_points();
 
   EconeContactResults& r = results_;
   r.thickness = h_;
@@ -679,6 +717,7 @@ EconeContactResults EconeContactRun::run() {
 Scene econe_contact_cone_scene(const Scene& scene) {
   Scene cone = scene;
   cone.study.kind = StudyKind::ConeBranch;
+  cone.study.hard_contact_at.clear();  // the contact era's, not the contact-free cone's
   cone.study.through_contact = false;
   cone.output.directory = (fs::path(scene.output.directory) / kConeDir).string();
   return cone;

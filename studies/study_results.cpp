@@ -108,6 +108,14 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
         {"min_distance_over_h", number_or_null(r.ipopt->min_distance_over_h)}};
   else
     j["ipopt"] = nullptr;
+  Json hard = Json::array();
+  for (const EconeHardContactPoint& p : r.hard_contact) {
+    Json point = {{"branch", p.branch}, {"at", p.at}, {"file", p.file}};
+    const Json check = Json::parse(hard_contact_check_json(p.check));  // outlives the loop
+    for (const auto& [key, value] : check.items()) point[key] = value;
+    hard.push_back(point);
+  }
+  j["hard_contact"] = hard;
   if (r.orientation_check) {
     const EconeOrientationCheck& o = *r.orientation_check;
     Json turned = Json::array();

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "studies/hard_contact_check.hpp"
+
 namespace growshell {
 
 /// The mesh a study ran on.
@@ -140,6 +142,14 @@ struct EconeCrossing {
   bool skewed_stable = false;   ///< the skewed samples on both sides are stable
 };
 
+/// One hard-contact check of the econe_contact study (study.hard_contact_at).
+struct EconeHardContactPoint {
+  std::string branch;  ///< "turned" or "symmetric"
+  double at = 0.0;     ///< the requested phi_e; the state checked is the nearest saved one
+  std::string file;    ///< "BRANCH/hard_contact_phiP.json", relative to DIR
+  HardContactCheck check;
+};
+
 /// The key values of an econe_contact study. Angles in radians, lengths in metres, energies in
 /// joules, E_b-hat in 1/m^2.
 struct EconeContactResults {
@@ -181,6 +191,8 @@ struct EconeContactResults {
   /// above study.symmetry_threshold and below 0.5, a larger one being a failed measure).
   std::optional<double> skewed_lowest_phi, skewed_highest_phi;
   std::optional<EconeIpoptCheck> ipopt;
+  /// The checks of study.hard_contact_at, by phi_e, turned branch first.
+  std::vector<EconeHardContactPoint> hard_contact;
   /// The pattern turned against the mesh at the contact start (study.orientation_check_turns).
   std::optional<EconeOrientationCheck> orientation_check;
   /// The turned cone traced (when the orientation check found a lower state breaking S4).
@@ -206,7 +218,8 @@ struct EconeContactResults {
 /// error_estimate, skewed_stable}],
 /// max_s4_defect_symmetric, skewed {found, message, search_at, energy_below_symmetric,
 /// lowest_phi, highest_phi}, ipopt ({converged, message, relative_energy_difference,
-/// state_difference_over_h, min_distance_over_h} or null), orientation_check ({phi_e,
+/// state_difference_over_h, min_distance_over_h} or null), hard_contact [{branch, at, file,
+/// and the fields of hard_contact_check_json}], orientation_check ({phi_e,
 /// fold_angle_deg, s4_defect, core_radius, turned [{turn_deg, converged, message,
 /// fold_angle_deg, energy_relative, s4_defect, chord_up, chord_down, energy_change_core,
 /// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), turned

@@ -388,6 +388,9 @@ const Field kFields[] = {
   {"study.ipopt_check",
    [](Scene& s, const Json& v, const std::string& k) { s.study.ipopt_check = read_bool(v, k); },
    [](const Scene& s) { return Json(s.study.ipopt_check); }},
+  {"study.hard_contact_at",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.hard_contact_at = read_number_list(v, k); },
+   [](const Scene& s) { return Json(s.study.hard_contact_at); }},
 };
 // clang-format on
 
@@ -625,6 +628,17 @@ void validate_scene(const Scene& scene) {
          enum_name(kStudyKindNames, st.kind) + "\" takes its thickness from the key thickness");
   }
   validate_series(st);
+  for (std::size_t i = 0; i < st.hard_contact_at.size(); ++i) {
+    const std::string key = "study.hard_contact_at[" + std::to_string(i) + "]";
+    require_positive(st.hard_contact_at[i], key);
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.hard_contact_at[j] == st.hard_contact_at[i])
+        fail(key + " = " + format(st.hard_contact_at[i]) + " is listed twice");
+  }
+  if (!st.hard_contact_at.empty() && st.kind != StudyKind::EconeContact &&
+      !(st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact))
+    fail("study.hard_contact_at is read only by the econe_contact study (this scene's study is \"" +
+         enum_name(kStudyKindNames, st.kind) + "\")");
 }
 
 Scene read_scene(const std::string& path) {

@@ -277,6 +277,12 @@ struct SceneStudy {
   /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both
   /// cones are free of contact, where penalty and hard constraints coincide.
   bool ipopt_check = false;
+  /// econe_contact only: at each of these excess angles (rad, > 0, no two equal), the saved
+  /// state nearest it of each branch traced with contact (the turned cone, the held symmetric
+  /// one) is solved again under Ipopt's hard constraints gap >= contact distance and compared
+  /// with the penalty's (studies/hard_contact_check.hpp): the contact solver of record at the
+  /// reported points, and gamma from its contact forces. Empty by default.
+  std::vector<double> hard_contact_at;
   /// econe_contact (at its contact start) and the cone_branch study's check at
   /// orientation_check_at: turns of the fold pattern over the material (degrees, each finite and
   /// in (-90, 90), none 0, no two equal) by which the cone's last contact-free state is turned,

@@ -842,6 +842,30 @@ TEST(Scene, SeriesReadsItsKeysAndRefusesBadOnesByName) {
                   "read only by study.kind = \"series\""));
 }
 
+TEST(Scene, HardContactAtIsTheEconeStudysAndBadListsAreRefusedByName) {
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "econe_contact", "hard_contact_at": [6.8, 7.0]}})", "test");
+  EXPECT_EQ(s.study.hard_contact_at, (std::vector<double>{6.8, 7.0}));
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.hard_contact_at,
+            s.study.hard_contact_at);
+  // A series of econe_contact studies passes it on.
+  EXPECT_NO_THROW(parse_scene(
+      R"({"study": {"kind": "series", "series_key": "thickness", "series_values": [0.04],
+                    "series_of": "econe_contact", "series_report": ["phi_kiss"],
+                    "hard_contact_at": [7.0]}})", "test"));
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact", "hard_contact_at": [7.0, -1]}})"))
+                .find("study.hard_contact_at[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact", "hard_contact_at": [7.0, 7.0]}})"))
+                .find("listed twice"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"hard_contact_at": [7.0]}})"))
+                .find("read only by the econe_contact study"),
+            std::string::npos);
+}
+
 TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
   EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
   const Scene s = parse_scene(

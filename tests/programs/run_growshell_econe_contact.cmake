@@ -29,8 +29,11 @@
 # pairs change (docs/guide/econe_contact.md, "Known limits"); the study then exits with 3 and
 # says so, which this test accepts, and nothing else. Its stability, and so phi_e^crit by
 # energy, hangs on a mode that is mostly the pattern's turn and is not asserted.
-# About 3 minutes (the orientation check about 20 s of it, the turned branch about 40 s, the
-# Ipopt check 30 s). Variables: PROGRAM, HARD_CONTACT_PROGRAM (hard_contact_at), OUT.
+#  - stage 6 (study.hard_contact_at [7.0]): both branches at 7.0 under Ipopt's hard
+#    constraints, converged with the gap >= 0.99 h; the held cone keeps S4 and gamma = pi/2;
+#    the program hard_contact_at gives the study's numbers for the turned cone.
+# About 4 minutes (the orientation check about 20 s of it, the turned branch about 40 s, the
+# Ipopt checks about 60 s). Variables: PROGRAM, HARD_CONTACT_PROGRAM (hard_contact_at), OUT.
 # Quoted strings in if() are strings, not names of variables (the script sets one called turned).
 cmake_policy(SET CMP0054 NEW)
 file(REMOVE_RECURSE "${OUT}")
@@ -40,7 +43,7 @@ file(WRITE "${OUT}/econe.json"
      " \"physics\": {\"contact_exclusion_radius\": 0.32},\n"
      " \"continuation\": {\"phi_max\": 7.3},\n"
      " \"study\": {\"kind\": \"econe_contact\", \"skew_search_at\": 7.2, \"eigenmodes\": 0,\n"
-     "           \"ipopt_check\": false},\n"
+     "           \"ipopt_check\": false, \"hard_contact_at\": [7.0]},\n"
      " \"output\": {\"write_vtk\": false}}\n")
 execute_process(COMMAND "${PROGRAM}" run "${OUT}/econe.json" --out "${OUT}/run"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
@@ -161,6 +164,31 @@ endif()
 # (which lets pairs come closer than h), S4 defect 0.0078 (the penalty's 0.0055), the largest
 # state difference 0.81 h; about 30 s. A second call refuses to overwrite its result. (Only
 # when the examples are built.)
+# Stage 6: both traced branches at 7.0 under Ipopt's hard constraints (study.hard_contact_at).
+string(JSON n_hard LENGTH "${results}" hard_contact)
+if(NOT n_hard EQUAL 2)
+  message(FATAL_ERROR "hard_contact holds ${n_hard} checks, not 2 (turned, symmetric):\n${results}")
+endif()
+foreach(i 0 1)
+  foreach(key branch file converged hard_min_distance_over_h hard_s4_defect hard_gamma
+              relative_energy_difference hard_elastic_energy)
+    string(JSON study_hard_${key} GET "${results}" hard_contact ${i} ${key})
+  endforeach()
+  if(NOT EXISTS "${OUT}/run/${study_hard_file}" OR NOT study_hard_converged
+     OR study_hard_hard_min_distance_over_h LESS 0.99)
+    message(FATAL_ERROR "the study's hard-contact check ${i} (${study_hard_branch}) did not "
+                        "converge with the gap >= 0.99 h, or wrote no file:\n${results}")
+  endif()
+  if(study_hard_branch STREQUAL "symmetric")
+    # The held cone keeps S4 under the hard constraints, and its contact planes stay at pi/2.
+    if(NOT study_hard_hard_s4_defect LESS 1e-6 OR study_hard_hard_gamma LESS 1.5707)
+      message(FATAL_ERROR "the held symmetric cone lost S4 or gamma = pi/2 under the hard "
+                          "constraints:\n${results}")
+    endif()
+  else()
+    set(turned_hard_energy ${study_hard_hard_elastic_energy})
+  endif()
+endforeach()
 if(HARD_CONTACT_PROGRAM)
   execute_process(COMMAND "${HARD_CONTACT_PROGRAM}" "${OUT}/run/turned" --phi 7.0
                   RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
@@ -177,6 +205,12 @@ if(HARD_CONTACT_PROGRAM)
   if(hard_gamma LESS 1.50 OR hard_gamma GREATER 1.5708)
     message(FATAL_ERROR "gamma under the hard constraints at 7.0 is ${hard_gamma}, not in "
                         "[1.50, pi/2]:\n${hard}")
+  endif()
+  # The program and the study's stage 6 solve the same state the same way: the same numbers.
+  string(JSON program_hard_energy GET "${hard}" hard_elastic_energy)
+  if(NOT program_hard_energy EQUAL turned_hard_energy)
+    message(FATAL_ERROR "hard_contact_at gives ${program_hard_energy} J at 7.0, the study "
+                        "${turned_hard_energy} J")
   endif()
   if(NOT converged OR hard_min_distance_over_h LESS 0.99 OR relative_energy_difference LESS -0.01
      OR relative_energy_difference GREATER 0 OR NOT hard_s4_defect GREATER 3e-3)

@@ -74,6 +74,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "max_s4_defect_symmetric",
                                              "skewed",
                                              "ipopt",
+                                             "hard_contact",
                                              "orientation_check",
                                              "turned",
                                              "warnings",
@@ -110,6 +111,28 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_TRUE(k["ipopt"]["converged"].get<bool>());
   EXPECT_DOUBLE_EQ(k["ipopt"]["min_distance_over_h"].get<double>(), 1.01);
   EXPECT_TRUE(j["orientation_check"].is_null());  // not run
+  // study.hard_contact_at: each check with its branch, the angle asked for, its file and the
+  // comparison's fields.
+  EXPECT_TRUE(j["hard_contact"].is_array() && j["hard_contact"].empty());
+  EconeContactResults hard = sample_results();
+  EconeHardContactPoint point;
+  point.branch = "turned";
+  point.at = 7.0;
+  point.file = "turned/hard_contact_phi7.json";
+  point.check.phi_e = 7.0089;
+  point.check.converged = true;
+  point.check.hard_gamma = 1.557;
+  point.check.penalty_gamma = std::numeric_limits<double>::quiet_NaN();
+  hard.hard_contact.push_back(point);
+  const auto h = nlohmann::ordered_json::parse(econe_contact_results_json(hard));
+  ASSERT_EQ(h["hard_contact"].size(), 1u);
+  EXPECT_EQ(h["hard_contact"][0]["branch"], "turned");
+  EXPECT_EQ(h["hard_contact"][0]["at"].get<double>(), 7.0);
+  EXPECT_EQ(h["hard_contact"][0]["file"], "turned/hard_contact_phi7.json");
+  EXPECT_EQ(h["hard_contact"][0]["phi_e"].get<double>(), 7.0089);
+  EXPECT_EQ(h["hard_contact"][0]["hard_gamma"].get<double>(), 1.557);
+  EXPECT_TRUE(h["hard_contact"][0]["penalty_gamma"].is_null());
+  EXPECT_TRUE(h["hard_contact"][0]["converged"].get<bool>());
   EXPECT_TRUE(j["warnings"].is_array() && j["warnings"].empty());
   // The orientation check: per turn, a failed relaxation has its message and no state.
   EconeContactResults oriented = sample_results();
