@@ -1,6 +1,7 @@
 #include "studies/parameter_sweep.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -337,6 +338,35 @@ ParameterSweep run_parameter_sweep(const Scene& base, const std::vector<SweepPar
     write_sweep_summary(dir, parameters, sweep.points, known);
   }
   return sweep;
+}
+
+std::string sweep_value_text(double v) { return Json(v).dump(); }
+
+void check_key_sweep_directory(const std::string& directory, ExistingOutput existing) {
+  check_output_directory(directory, existing, "series", "sweep_plan.json");
+}
+
+KeySweep run_key_sweep(const Scene& base, const std::string& key, const std::vector<double>& values,
+                       const std::string& dir, ExistingOutput existing,
+                       const std::vector<std::string>& own_files,
+                       const StudyProgress& progress) {
+  SweepParameter parameter{key, {}};
+  for (double v : values) parameter.values.push_back(sweep_value_text(v));
+  const std::vector<SweepParameter> parameters = {parameter};
+  // Bad input is refused before anything is removed or written: every point's scene, then
+  // the directory.
+  for (const SweepPoint& point : sweep_points(parameters)) sweep_point_scene(base, point, dir);
+  check_key_sweep_directory(dir, existing);
+  if (existing == ExistingOutput::Overwrite) {
+    std::error_code ec;
+    for (const std::string& name : own_files) fs::remove(fs::path(dir) / name, ec);
+  }
+  const auto started = std::chrono::steady_clock::now();
+  KeySweep out;
+  out.run = run_parameter_sweep(base, parameters, dir, existing, progress);
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return out;
 }
 
 }  // namespace growshell

@@ -111,4 +111,29 @@ ParameterSweep run_parameter_sweep(const Scene& base, const std::vector<SweepPar
                                    const std::string& dir, ExistingOutput existing,
                                    const StudyProgress& progress = {});
 
+/// The shortest text that reads back as v (how a one-key sweep sets a numeric key, and how
+/// the series write its values).
+std::string sweep_value_text(double v);
+
+/// Throws std::invalid_argument, naming the directory and what to do, if a series (a study
+/// that is one sweep over one key: thickness_series, series) may not use `directory` under
+/// `existing` (check_output_directory, with DIR/sweep_plan.json the record a resume needs).
+void check_key_sweep_directory(const std::string& directory, ExistingOutput existing);
+
+/// What run_key_sweep returns.
+struct KeySweep {
+  ParameterSweep run;
+  double wall_seconds = 0.0;  ///< of the points' runs (those of a resume only, when resumed)
+};
+
+/// The sweep of a series study: `base` at each of `values` of the scene key `key`, into DIR.
+/// Refuses bad input before anything is removed or written (every point's scene, then
+/// check_key_sweep_directory); under Overwrite removes the series' own summaries `own_files`
+/// (names in DIR) first, so that none outlives the points it summarised; then
+/// run_parameter_sweep.
+KeySweep run_key_sweep(const Scene& base, const std::string& key, const std::vector<double>& values,
+                       const std::string& dir, ExistingOutput existing,
+                       const std::vector<std::string>& own_files,
+                       const StudyProgress& progress = {});
+
 }  // namespace growshell

@@ -5,6 +5,7 @@
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/econe_contact_study.hpp"
+#include "studies/parameter_sweep.hpp"
 #include "studies/series_study.hpp"
 #include "studies/thickness_series_study.hpp"
 
@@ -22,7 +23,7 @@ void check_scene_study_directory(const Scene& scene, ExistingOutput existing) {
       check_econe_contact_directory(scene.output.directory, existing);
       return;
     case StudyKind::Series:
-      check_series_directory(scene.output.directory, existing);
+      check_key_sweep_directory(scene.output.directory, existing);
       return;
   }
   throw std::logic_error("check_scene_study_directory: a study kind without a directory check");

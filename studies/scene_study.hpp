@@ -22,8 +22,9 @@ struct SceneStudyOutcome {
 
 /// Throws std::invalid_argument, naming the directory and what to do, if the study of `scene`
 /// may not write into scene.output.directory under `existing`: check_study_directory for
-/// cone_branch, check_thickness_series_directory for thickness_series, check_econe_contact_directory for
-/// econe_contact. Writes nothing.
+/// cone_branch, check_thickness_series_directory for thickness_series,
+/// check_econe_contact_directory for econe_contact, check_key_sweep_directory for series.
+/// Writes nothing.
 void check_scene_study_directory(const Scene& scene, ExistingOutput existing);
 
 /// The file, relative to scene.output.directory, whose presence means that a run of the study

@@ -1,8 +1,6 @@
 #include "studies/series_study.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,15 +12,11 @@
 namespace growshell {
 namespace {
 
-namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 Json number_or_null(const std::optional<double>& v) {
   return v && std::isfinite(*v) ? Json(*v) : Json(nullptr);
 }
-
-/// The shortest text that reads back as v (how the sweep sets the key).
-std::string value_text(double v) { return Json(v).dump(); }
 
 SeriesPoint series_point(double value, const std::vector<std::string>& report,
                          const SweepPoint& point, const SweepPointResult& result) {
@@ -76,12 +70,12 @@ std::string series_csv(const SeriesResults& r) {
   for (const std::string& k : r.report) csv << ',' << k;
   csv << '\n';
   for (const SeriesPoint& p : r.points) {
-    csv << value_text(p.value) << ',' << p.status << ',';
+    csv << sweep_value_text(p.value) << ',' << p.status << ',';
     if (p.unknowns) csv << *p.unknowns;
     for (std::size_t i = 0; i < r.report.size(); ++i) {
       csv << ',';
       if (i < p.reported.size() && p.reported[i] && std::isfinite(*p.reported[i]))
-        csv << value_text(*p.reported[i]);
+        csv << sweep_value_text(*p.reported[i]);
     }
     csv << '\n';
   }
@@ -98,10 +92,6 @@ Scene series_base_scene(const Scene& scene) {
   return base;
 }
 
-void check_series_directory(const std::string& directory, ExistingOutput existing) {
-  check_output_directory(directory, existing, "series", "sweep_plan.json");
-}
-
 SeriesResults run_series_study(const Scene& scene, ExistingOutput existing,
                                const StudyProgress& progress) {
   validate_scene(scene);
@@ -109,21 +99,10 @@ SeriesResults run_series_study(const Scene& scene, ExistingOutput existing,
     throw std::invalid_argument("run_series_study: the scene's study.kind is " +
                                 study_kind_name(scene.study.kind) + ", not series");
   const std::string& dir = scene.output.directory;
-  const Scene base = series_base_scene(scene);
-  SweepParameter parameter{scene.study.series_key, {}};
-  for (double v : scene.study.series_values) parameter.values.push_back(value_text(v));
-  const std::vector<SweepParameter> parameters = {parameter};
-  // Bad input is refused before anything is removed or written: every point's scene, then
-  // the directory.
-  for (const SweepPoint& point : sweep_points(parameters)) sweep_point_scene(base, point, dir);
-  check_series_directory(dir, existing);
-  if (existing == ExistingOutput::Overwrite) {
-    std::error_code ec;
-    for (const char* name : {"results.json", "series.csv", "series.png"})
-      fs::remove(fs::path(dir) / name, ec);
-  }
-  const auto started = std::chrono::steady_clock::now();
-  const ParameterSweep run = run_parameter_sweep(base, parameters, dir, existing, progress);
+  const KeySweep sweep =
+      run_key_sweep(series_base_scene(scene), scene.study.series_key, scene.study.series_values,
+                    dir, existing, {"results.json", "series.csv", "series.png"}, progress);
+  const ParameterSweep& run = sweep.run;
   SeriesResults results;
   results.key = scene.study.series_key;
   results.of = study_kind_name(scene.study.series_of);
@@ -134,13 +113,13 @@ SeriesResults run_series_study(const Scene& scene, ExistingOutput existing,
                                           run.points[i], run.results[i]));
     const SeriesPoint& p = results.points.back();
     if (p.status != "completed")
-      unfinished += (unfinished.empty() ? "" : "; ") + results.key + " = " + value_text(p.value) +
-                    " " + p.status + (p.end.empty() ? "" : " (" + p.end + ")");
+      unfinished += (unfinished.empty() ? "" : "; ") + results.key + " = " +
+                    sweep_value_text(p.value) + " " + p.status +
+                    (p.end.empty() ? "" : " (" + p.end + ")");
   }
   results.completed = !results.points.empty() && unfinished.empty();
   results.end = results.completed ? "completed" : unfinished;
-  results.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  results.wall_seconds = sweep.wall_seconds;
   write_file_atomically(dir + "/series.csv", series_csv(results));
   write_file_atomically(dir + "/results.json", series_results_json(results));
   if (progress) progress("# wrote " + dir + "/results.json and series.csv: " + results.end);

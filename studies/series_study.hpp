@@ -58,16 +58,11 @@ std::string series_csv(const SeriesResults& results);
 /// no series keys (the sweep's base scene).
 Scene series_base_scene(const Scene& scene);
 
-/// Throws std::invalid_argument, naming the directory and what to do, if the series may not
-/// use `directory` under `existing` (as check_output_directory, with DIR/sweep_plan.json the
-/// record a resume needs).
-void check_series_directory(const std::string& directory, ExistingOutput existing);
-
 /// Runs the series of `scene` (study.kind series) into scene.output.directory: the sweep over
-/// study.series_key (each point's log lines to `progress`), then DIR/results.json and
-/// DIR/series.csv, each written atomically. Under Overwrite the earlier series' summaries are
-/// removed first. Validates the scene, every point's scene and the directory before anything
-/// is written (std::invalid_argument naming the key or what differs from the recorded series);
+/// study.series_key (run_key_sweep; each point's log lines to `progress`), then
+/// DIR/results.json and DIR/series.csv, each written atomically. Under Overwrite the earlier
+/// series' summaries are removed first. Validates the scene, every point's scene and the
+/// directory (check_key_sweep_directory) before anything is written (std::invalid_argument naming the key or what differs from the recorded series);
 /// a point that fails is reported in the results, and the others go on.
 SeriesResults run_series_study(const Scene& scene, ExistingOutput existing,
                                const StudyProgress& progress = {});

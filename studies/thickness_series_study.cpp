@@ -1,8 +1,6 @@
 #include "studies/thickness_series_study.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,7 +12,6 @@
 namespace growshell {
 namespace {
 
-namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 Json number_or_null(const std::optional<double>& v) {
@@ -54,9 +51,6 @@ ThicknessSeriesPoint series_point(double thickness, const SweepPoint& point,
   return p;
 }
 
-/// The shortest text that reads back as h (the sweep's value for the key thickness).
-std::string value_text(double h) { return Json(h).dump(); }
-
 }  // namespace
 
 ThicknessSeriesResults summarize_thickness_series(std::vector<ThicknessSeriesPoint> points,
@@ -82,7 +76,7 @@ ThicknessSeriesResults summarize_thickness_series(std::vector<ThicknessSeriesPoi
     }
     if (p.status != "completed") {
       std::ostringstream text;
-      text << (unfinished.empty() ? "" : "; ") << "h = " << value_text(p.thickness) << " "
+      text << (unfinished.empty() ? "" : "; ") << "h = " << sweep_value_text(p.thickness) << " "
            << p.status << (p.end.empty() ? "" : " (" + p.end + ")");
       unfinished += text.str();
     }
@@ -128,10 +122,10 @@ std::string thickness_series_csv(const ThicknessSeriesResults& r) {
   std::ostringstream csv;  // numbers in their shortest round-trip form
   csv << "thickness,status,unknowns,phi_branch,phi_branch_r2_over_h2,phi_max,eb_hat_max\n";
   const auto cell = [&](const std::optional<double>& v) {
-    if (v && std::isfinite(*v)) csv << value_text(*v);
+    if (v && std::isfinite(*v)) csv << sweep_value_text(*v);
   };
   for (const ThicknessSeriesPoint& p : r.points) {
-    csv << value_text(p.thickness) << ',' << p.status << ',';
+    csv << sweep_value_text(p.thickness) << ',' << p.status << ',';
     if (p.unknowns) csv << *p.unknowns;
     csv << ',';
     cell(p.phi_branch);
@@ -154,7 +148,7 @@ Scene thickness_series_base_scene(const Scene& scene) {
 }
 
 void check_thickness_series_directory(const std::string& directory, ExistingOutput existing) {
-  check_output_directory(directory, existing, "series", "sweep_plan.json");
+  check_key_sweep_directory(directory, existing);
 }
 
 ThicknessSeriesResults run_thickness_series_study(const Scene& scene, ExistingOutput existing,
@@ -164,29 +158,16 @@ ThicknessSeriesResults run_thickness_series_study(const Scene& scene, ExistingOu
     throw std::invalid_argument("run_thickness_series_study: the scene's study.kind is " +
                                 study_kind_name(scene.study.kind) + ", not thickness_series");
   const std::string& dir = scene.output.directory;
-  const Scene base = thickness_series_base_scene(scene);
-  SweepParameter thickness{"thickness", {}};
-  for (double h : scene.study.thicknesses) thickness.values.push_back(value_text(h));
-  const std::vector<SweepParameter> parameters = {thickness};
-  const std::vector<SweepPoint> sweep = sweep_points(parameters);
-  // Bad input is refused before anything is removed or written: every point's scene, then
-  // the directory.
-  for (const SweepPoint& point : sweep) sweep_point_scene(base, point, dir);
-  check_thickness_series_directory(dir, existing);
-  if (existing == ExistingOutput::Overwrite) {
-    std::error_code ec;
-    for (const char* name : {"results.json", "thickness_series.csv", "thickness_series.png"})
-      fs::remove(fs::path(dir) / name, ec);
-  }
-  const auto started = std::chrono::steady_clock::now();
-  const ParameterSweep run = run_parameter_sweep(base, parameters, dir, existing, progress);
+  const KeySweep sweep = run_key_sweep(
+      thickness_series_base_scene(scene), "thickness", scene.study.thicknesses, dir, existing,
+      {"results.json", "thickness_series.csv", "thickness_series.png"}, progress);
+  const ParameterSweep& run = sweep.run;
   std::vector<ThicknessSeriesPoint> points;
   for (std::size_t i = 0; i < run.points.size(); ++i)
     points.push_back(series_point(scene.study.thicknesses[i], run.points[i], run.results[i]));
   ThicknessSeriesResults results =
       summarize_thickness_series(std::move(points), scene.geometry.radius, scene.study.phi_max_limit);
-  results.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  results.wall_seconds = sweep.wall_seconds;
   write_file_atomically(dir + "/thickness_series.csv", thickness_series_csv(results));
   write_file_atomically(dir + "/results.json", thickness_series_results_json(results));
   if (progress) progress("# wrote " + dir + "/results.json and thickness_series.csv: " + results.end);
