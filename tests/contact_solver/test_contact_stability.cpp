@@ -34,6 +34,7 @@
 #include "solvers/contact/contact_stability.hpp"
 #include "support/dense_symmetric.hpp"
 #include "support/sheet_states.hpp"
+#include "support/strict_contact_solve_options.hpp"
 
 namespace growshell {
 namespace {
@@ -41,7 +42,6 @@ namespace {
 using test_support::dense_symmetric;
 using test_support::folded_sheet;
 
-constexpr double kPi = 3.14159265358979323846;
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 struct FoldedDisc {
@@ -435,19 +435,7 @@ TEST(ContactStability, PressedStripEquilibriumIsStable) {
   }
 
   const double force = 1e-3;  // N, the scene's contact force scale
-  ContactSolveOptions o;
-  o.contact_distance = h;
-  o.exclusion_radius = 0.5 * kPi * h;
-  o.candidate_margin = 0.25 * h;
-  o.violation_tolerance = 1e-6 * h;
-  o.minimizer.length_scale = h;
-  o.minimizer.force_scale = force;
-  o.minimizer.tolerance = 1e-10;
-  o.minimizer.acceptable_tolerance = 1e-8;
-  o.minimizer.constraint_violation_tolerance = 1e-9 * h;
-  o.minimizer.complementarity_tolerance = 1e-10 * h * force;
-  o.minimizer.dual_infeasibility_tolerance = 1e-10 * force;
-  o.newton.gradient_tolerance = 1e-10 * force;
+  const ContactSolveOptions o = test_support::strict_contact_solve_options(h, force);
   const ContactSolveResult r = solve_contact_equilibrium(model, 0.0, proxy, x0, fixed, o);
   ASSERT_TRUE(r.converged) << r.message;
   ASSERT_TRUE(r.used_contact) << r.message;

@@ -24,6 +24,7 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/newton/newton_solver.hpp"
+#include "support/strict_contact_solve_options.hpp"
 
 namespace growshell::test_support {
 
@@ -159,22 +160,7 @@ struct TwoStrips {
     return r.x;
   }
 
-  ContactSolveOptions options() const {
-    ContactSolveOptions o;
-    o.contact_distance = kH;
-    o.exclusion_radius = 0.5 * kPi * kH;
-    o.candidate_margin = 0.25 * kH;
-    o.violation_tolerance = 1e-6 * kH;
-    o.minimizer.length_scale = kH;
-    o.minimizer.force_scale = kForce;
-    o.minimizer.tolerance = 1e-10;
-    o.minimizer.acceptable_tolerance = 1e-8;
-    o.minimizer.constraint_violation_tolerance = 1e-9 * kH;
-    o.minimizer.complementarity_tolerance = 1e-10 * kH * kForce;
-    o.minimizer.dual_infeasibility_tolerance = 1e-10 * kForce;
-    o.newton.gradient_tolerance = 1e-10 * kForce;
-    return o;
-  }
+  ContactSolveOptions options() const { return strict_contact_solve_options(kH, kForce); }
 
   // Lowest proxy vertex of the top strip (m). The bottom strip's proxy lies exactly in z = 0
   // (the limit surface of a flat control net), so this is the layers' distance measured on
