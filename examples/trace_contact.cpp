@@ -337,7 +337,7 @@ int run(int argc, char** argv) {
     if (scene.output.write_vtk && scene.output.snapshot_every > 0 &&
         (b.index - 1) % scene.output.snapshot_every == 0) {
       const std::string shell_file = b.name + "_" + name.str() + ".vtu";
-      write_vtu(out_dir + "/" + shell_file, shell_snapshot(model, s.sample.x, 2));
+      write_vtu(out_dir + "/" + shell_file, shell_snapshot(model, s.sample.x, s.sample.parameter, 2));
       if (gaps)
         write_vtu(out_dir + "/" + b.name + "_contact_" + name.str() + ".vtu",
                   contact_snapshot(proxy, *gaps, s.sample.x, s.forces));
@@ -498,7 +498,7 @@ int run(int argc, char** argv) {
                             on_point);
       if (g.reached_target) {
         const ContactBranchSample& w = g.last.sample;
-        write_vtu(out_dir + "/wound_4pi.vtu", shell_snapshot(model, w.sample.x, 2));
+        write_vtu(out_dir + "/wound_4pi.vtu", shell_snapshot(model, w.sample.x, four_pi, 2));
         const ContactGapConstraints gaps(proxy, w.pairs, options.contact_distance,
                                          model.dimension(), options.gap);
         write_vtu(out_dir + "/wound_4pi_contact.vtu",

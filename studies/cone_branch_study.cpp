@@ -337,7 +337,7 @@ void ConeBranchRun::on_special(const SpecialPoint& sp) {
             displaced_along_mode(sp.x, modes.pairs.vectors.col(k), 0.05 * scene_.geometry.radius);
         record_->write_surface(
             "special_" + std::to_string(special_index) + "_mode_" + std::to_string(k) + ".vtu",
-            shell_snapshot(*model_, shape, 1));
+            shell_snapshot(*model_, shape, sp.parameter, 1));
       }
     }
     j << "]";

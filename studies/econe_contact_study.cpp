@@ -18,6 +18,9 @@
 #include "libshell/analysis/contact_zones.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/io/contact_snapshot.hpp"
+#include "libshell/io/shell_snapshot.hpp"
+#include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/contact/hard_contact_solve_options.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -83,6 +86,7 @@ class EconeContactRun {
   void summarize(const EconeBranchResult& traced);
   void trace_turned();
   void check_hard_contact_points();
+  void wind_up();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
   }
@@ -104,7 +108,10 @@ class EconeContactRun {
   std::unique_ptr<ContactProxy> proxy_;
   EconeBranchOptions options_;
   BranchSample start_;  ///< the cone's last state
-  std::unique_ptr<BranchRecord> symmetric_, skewed_, turned_;
+  std::unique_ptr<BranchRecord> symmetric_, skewed_, turned_, wound_;
+  /// The skewed cone's highest stable sample that breaks S4: where the winding starts.
+  Eigen::VectorXd top_skewed_;
+  double top_skewed_phi_ = -std::numeric_limits<double>::infinity();
   /// The orientation check's lowest relaxed state that breaks S4 (empty if none): the start of
   /// the turned branch.
   Eigen::VectorXd turned_start_;
@@ -649,6 +656,100 @@ void EconeContactRun::check_hard_contact_points() {
   }
 }
 
+/// Stage 7 (study.wind_to): from the skewed cone's highest stable state, the sheet grown on in
+/// natural steps, each a strict minimum of shell + penalty (solvers/contact/
+/// contact_growth_path.hpp), so that where a stable state ends it drops onto the next one: the
+/// wound-up cones. Every accepted state to DIR/wound (row, state), the shapes at
+/// study.wind_shapes_at and at the end as VTU.
+void EconeContactRun::wind_up() {
+  fs::remove_all(fs::path(dir_) / "wound");  // stale once the branches are traced again
+  if (!scene_.study.wind_to) return;
+  const double target = *scene_.study.wind_to;
+  if (top_skewed_.size() == 0) {
+    const std::string why = "no winding: the skewed branch has no stable sample to start from";
+    say("# stage 7: " + why);
+    results_.end = results_.completed ? why : results_.end + "; " + why;
+    results_.completed = false;
+    return;
+  }
+  const auto started = std::chrono::steady_clock::now();
+  wound_ = std::make_unique<BranchRecord>(dir_ + "/wound", kColumns, BranchRecord::Start::Fresh);
+  EconeWindUp w;
+  w.start_phi = top_skewed_phi_;
+  w.target = target;
+  say("# stage 7: the sheet grown on from the skewed cone's highest stable state at phi_e = " +
+      fixed(top_skewed_phi_, 6) + " to " + fixed(target, 6) + ", a minimum at every step");
+  ContactGrowthOptions growth;
+  growth.contact = options_.contact;
+  growth.contact.symmetric_subspace = nullptr;
+  // Every triangle near a proxy vertex, not only the nearest: as the sheet winds, layers slide
+  // over layers, and a vertex between two of them must be held by both.
+  growth.contact.selection = NearPairSelection{false, false};
+  growth.newton = options_.relaxation;
+  // Steps bounded to h/4 per dof: where a stable state ends the sheet slides a long way (layers
+  // over layers) to the next one, and unbounded Newton steps push vertices through a layer.
+  growth.newton.max_step_inf_norm = 0.25 * h_;
+  growth.newton.max_iterations = 5000;
+  growth.max_step = std::min(0.05, scene_.continuation.max_step);
+  std::vector<double> stops = scene_.study.wind_shapes_at;
+  stops.push_back(target);
+  std::sort(stops.begin(), stops.end());
+  stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
+  const auto on_point = [&](const ContactGrowthPoint& p) {
+    if (p.jumped) {
+      w.jumps.push_back(p.sample.sample.parameter);
+      std::ostringstream j;
+      j << std::setprecision(10) << "{\"kind\": \"jump\", \"phi_e\": " << p.sample.sample.parameter
+        << ", \"saddle_escapes\": " << p.saddle_escapes << "}";
+      wound_->add_event(j.str(), {"jump", p.sample.sample.parameter, "wound", {}});
+      say("# wound: the stable state ended; the sheet dropped onto another one at phi_e = " +
+          fixed(p.sample.sample.parameter, 6));
+    }
+    record_sample("wound", *wound_, p.sample);
+  };
+  Eigen::VectorXd x = top_skewed_;
+  double phi = top_skewed_phi_;
+  const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, x, pinned_, growth.contact);
+  ContactGrowthResult g;
+  for (const double stop : stops) {
+    if (!(stop > phi)) continue;
+    g = grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth, on_point);
+    w.steps += g.steps;
+    w.failed_steps += g.failed_steps;
+    if (g.steps > 0 || g.reached_target) {
+      x = g.last.sample.sample.x;
+      phi = g.last.sample.sample.parameter;
+      w.highest_phi = phi;
+    }
+    if (!g.reached_target) break;
+    // The shape where the path stopped: the shell with its energy densities, and the contact
+    // proxy with its pair forces.
+    std::ostringstream name;
+    name << "shape_phi" << std::setprecision(10) << stop;
+    const ContactBranchSample& s = g.last.sample;
+    wound_->add_snapshot(phi, name.str() + ".vtu", shell_snapshot(*model_, s.sample.x, phi, 2));
+    const ContactGapConstraints gaps(*proxy_, s.pairs, growth.contact.contact_distance,
+                                     model_->dimension(), growth.contact.gap);
+    wound_->write_surface(name.str() + "_contact.vtu",
+                          contact_snapshot(*proxy_, gaps, s.sample.x, s.forces));
+    wound_->commit();
+    w.shapes.push_back({phi, "wound/" + name.str() + ".vtu", "wound/" + name.str() + "_contact.vtu"});
+    say("# wound: wrote the shape at phi_e = " + fixed(phi, 6) + " (wound/" + name.str() +
+        ".vtu, _contact.vtu)");
+  }
+  w.reached = g.reached_target;
+  w.end = w.reached ? "reached phi_e = " + fixed(target, 6) : g.message;
+  w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  say("# stage 7: " + w.end + " (" + std::to_string(w.steps) + " steps, " +
+      std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) + " jumps)");
+  if (!w.reached) {
+    const std::string why = "winding: " + w.end;
+    results_.end = results_.completed ? why : results_.end + "; " + why;
+    results_.completed = false;
+  }
+  results_.wound = std::move(w);
+}
+
 EconeContactResults EconeContactRun::run() {
   const auto started = std::chrono::steady_clock::now();
   fs::create_directories(dir_);
@@ -675,6 +776,12 @@ EconeContactResults EconeContactRun::run() {
     if (which == EconeBranch::Symmetric && std::isfinite(defect))
       results_.max_s4_defect_symmetric =
           std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
+    if (which == EconeBranch::Skewed && s.sample.negative_eigenvalues == 0 &&
+        breaks_s4(defect, scene_.study.symmetry_threshold) &&
+        s.sample.parameter > top_skewed_phi_) {
+      top_skewed_phi_ = s.sample.parameter;
+      top_skewed_ = s.sample.x;
+    }
   };
   callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
     record_special(to_string(which), record(which), sp);
@@ -693,6 +800,7 @@ EconeContactResults EconeContactRun::run() {
   summarize(traced);
   trace_turned();
   check_hard_contact_points();
+  wind_up();
 
   EconeContactResults& r = results_;
   r.thickness = h_;

@@ -160,6 +160,25 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   } else {
     j["turned"] = nullptr;
   }
+  if (r.wound) {
+    const EconeWindUp& w = *r.wound;
+    Json shapes = Json::array();
+    for (const EconeWindUp::Shape& s : w.shapes)
+      shapes.push_back(
+          {{"phi_e", number_or_null(s.phi_e)}, {"shell", s.shell}, {"contact", s.contact}});
+    j["wound"] = {{"start_phi", number_or_null(w.start_phi)},
+                  {"target", number_or_null(w.target)},
+                  {"reached", w.reached},
+                  {"highest_phi", number_or_null(w.highest_phi)},
+                  {"steps", w.steps},
+                  {"failed_steps", w.failed_steps},
+                  {"jumps", w.jumps},
+                  {"shapes", shapes},
+                  {"end", w.end},
+                  {"seconds", number_or_null(w.seconds)}};
+  } else {
+    j["wound"] = nullptr;
+  }
   j["warnings"] = r.warnings;
   j["completed"] = r.completed;
   j["end"] = r.end;
@@ -167,8 +186,10 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   j["symmetric_csv"] = "symmetric/branch.csv";
   j["skewed_csv"] = "skewed/branch.csv";
   j["turned_csv"] = r.turned ? Json("turned/branch.csv") : Json(nullptr);
+  j["wound_csv"] = r.wound ? Json("wound/branch.csv") : Json(nullptr);
   Json events = {"cone/events.json", "symmetric/events.json", "skewed/events.json"};
   if (r.turned) events.push_back("turned/events.json");
+  if (r.wound) events.push_back("wound/events.json");
   j["events"] = events;
   j["wall_seconds"] = number_or_null(r.wall_seconds);
   return j.dump(2) + "\n";

@@ -135,6 +135,26 @@ struct EconeTurnedBranch {
   std::string end;  ///< why each trace ended
 };
 
+/// The winding (study.wind_to): the sheet grown on from the skewed cone's highest stable state
+/// by minimisation at every step, each accepted state a strict minimum of shell + penalty.
+struct EconeWindUp {
+  double start_phi = 0.0;  ///< the skewed cone's highest stable sample
+  double target = 0.0;     ///< study.wind_to
+  bool reached = false;    ///< the path reached the target
+  std::optional<double> highest_phi;  ///< its last accepted state
+  int steps = 0, failed_steps = 0;
+  /// Where a stable state ended and the path dropped onto another one (a saddle pushed off).
+  std::vector<double> jumps;
+  /// The shapes written: at each of study.wind_shapes_at reached, and at the end.
+  struct Shape {
+    double phi_e = 0.0;
+    std::string shell, contact;  ///< VTU files, relative to the study directory
+  };
+  std::vector<Shape> shapes;
+  std::string end;  ///< why it ended
+  double seconds = 0.0;
+};
+
 /// An energy crossing of the symmetric and the skewed branch.
 struct EconeCrossing {
   double phi_e = 0.0;
@@ -197,6 +217,9 @@ struct EconeContactResults {
   std::optional<EconeOrientationCheck> orientation_check;
   /// The turned cone traced (when the orientation check found a lower state breaking S4).
   std::optional<EconeTurnedBranch> turned;
+  /// The winding beyond the skewed branch (study.wind_to); unset if not asked for or no stable
+  /// skewed state was found to start from.
+  std::optional<EconeWindUp> wound;
   /// Caveats on the values above, each a sentence naming what it concerns: e.g. a turned
   /// pattern that relaxed to a lower state breaking S4, so that the symmetric branch traced
   /// with its folds on the mesh's mirror lines is not the lowest state of the sheet there.
@@ -225,9 +248,11 @@ struct EconeContactResults {
 /// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), turned
 /// ({start_phi, turn_deg, lowest_phi, highest_phi, lowest_phi_breaking_s4,
 /// top_energy_relative, top_s4_defect, top_gamma, largest_energy_below_symmetric,
-/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), warnings [strings],
+/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), wound ({start_phi,
+/// target, reached, highest_phi, steps, failed_steps, jumps, shapes [{phi_e, shell, contact}],
+/// end, seconds} or null), warnings [strings],
 /// completed, end, cone_csv, symmetric_csv, skewed_csv, turned_csv (null without the turned
-/// branch), events (each branch's events.json), wall_seconds. Unset and non-finite values are
+/// branch), wound_csv (null without the winding), events (each branch's events.json), wall_seconds. Unset and non-finite values are
 /// null.
 std::string econe_contact_results_json(const EconeContactResults& results);
 

@@ -129,6 +129,17 @@ Json write_number_or_auto(const std::optional<double>& value) {
   return value ? Json(*value) : Json("auto");
 }
 
+/// A number, or null (unset: the step it asks for is not run).
+std::optional<double> read_number_or_null(const Json& v, const std::string& key) {
+  if (v.is_null()) return std::nullopt;
+  if (!v.is_number()) fail(key + " must be a number or null (got " + v.dump() + ")");
+  return v.get<double>();
+}
+
+Json write_number_or_null(const std::optional<double>& value) {
+  return value ? Json(*value) : Json(nullptr);
+}
+
 Eigen::Vector2d read_point2(const Json& v, const std::string& key) {
   if (!(v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()))
     fail(key + " must be an array of two numbers [x, y] (got " + v.dump() + ")");
@@ -391,6 +402,12 @@ const Field kFields[] = {
   {"study.hard_contact_at",
    [](Scene& s, const Json& v, const std::string& k) { s.study.hard_contact_at = read_number_list(v, k); },
    [](const Scene& s) { return Json(s.study.hard_contact_at); }},
+  {"study.wind_to",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.wind_to = read_number_or_null(v, k); },
+   [](const Scene& s) { return write_number_or_null(s.study.wind_to); }},
+  {"study.wind_shapes_at",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.wind_shapes_at = read_number_list(v, k); },
+   [](const Scene& s) { return Json(s.study.wind_shapes_at); }},
 };
 // clang-format on
 
@@ -479,6 +496,32 @@ Scene default_scene() { return Scene{}; }
 namespace {
 
 /// The series keys: complete for study.kind series, absent for every other study.
+/// study.wind_to and study.wind_shapes_at: econe_contact only, beyond continuation.phi_max.
+void validate_winding(const Scene& scene) {
+  const SceneStudy& st = scene.study;
+  const bool econe = st.kind == StudyKind::EconeContact ||
+                     (st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact);
+  if ((st.wind_to || !st.wind_shapes_at.empty()) && !econe)
+    fail("study.wind_to and study.wind_shapes_at are read only by the econe_contact study (this "
+         "scene's study is \"" + enum_name(kStudyKindNames, st.kind) + "\")");
+  if (!st.wind_shapes_at.empty() && !st.wind_to)
+    fail("study.wind_shapes_at is set but study.wind_to is null: the winding is not run");
+  if (!st.wind_to) return;
+  const double top = scene.continuation.phi_max;
+  if (!(std::isfinite(*st.wind_to) && *st.wind_to > top))
+    fail("study.wind_to = " + format(*st.wind_to) + " must be finite and above continuation.phi_max = " +
+         format(top) + ": the winding starts where the skewed branch ends");
+  for (std::size_t i = 0; i < st.wind_shapes_at.size(); ++i) {
+    const std::string key = "study.wind_shapes_at[" + std::to_string(i) + "]";
+    const double at = st.wind_shapes_at[i];
+    if (!(at > top && at <= *st.wind_to))
+      fail(key + " = " + format(at) + " must lie in (continuation.phi_max, study.wind_to] = (" +
+           format(top) + ", " + format(*st.wind_to) + "]");
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.wind_shapes_at[j] == at) fail(key + " = " + format(at) + " is listed twice");
+  }
+}
+
 void validate_series(const SceneStudy& st) {
   if (st.kind != StudyKind::Series) {
     if (!st.series_key.empty() || !st.series_values.empty() || !st.series_report.empty() ||
@@ -639,6 +682,7 @@ void validate_scene(const Scene& scene) {
       !(st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact))
     fail("study.hard_contact_at is read only by the econe_contact study (this scene's study is \"" +
          enum_name(kStudyKindNames, st.kind) + "\")");
+  validate_winding(scene);
 }
 
 Scene read_scene(const std::string& path) {

@@ -283,6 +283,16 @@ struct SceneStudy {
   /// with the penalty's (studies/hard_contact_check.hpp): the contact solver of record at the
   /// reported points, and gamma from its contact forces. Empty by default.
   std::vector<double> hard_contact_at;
+  /// econe_contact only: beyond the skewed branch, the sheet is grown on from the skewed
+  /// cone's highest stable state up to this excess angle (rad, finite, above
+  /// continuation.phi_max) by minimisation at every step, so that it drops onto whatever stable
+  /// state follows where a branch ends: the wound-up cones (physics.md, item 5). Unset (null,
+  /// the default): no winding.
+  std::optional<double> wind_to;
+  /// econe_contact only: excess angles (rad, in (continuation.phi_max, wind_to], no two equal)
+  /// at which the winding stops once and writes the shape (shell and contact proxy, VTU); the
+  /// shape at wind_to is always written.
+  std::vector<double> wind_shapes_at;
   /// econe_contact (at its contact start) and the cone_branch study's check at
   /// orientation_check_at: turns of the fold pattern over the material (degrees, each finite and
   /// in (-90, 90), none 0, no two equal) by which the cone's last contact-free state is turned,

@@ -8,11 +8,12 @@
 
 namespace growshell {
 
-/// Samples the limit surface of state x at the excess angle phi_e (radians). With `refinement` = 1 the points are the limit
-/// positions of the element corners (shared between elements); with r > 1 each element is
+/// Samples the limit surface of state x at the excess angle phi_e (radians; the energy
+/// densities are the state's at that growth, so pass the state's own). With `refinement` = 1
+/// the points are the limit positions of the element corners (shared between elements); with r > 1 each element is
 /// evaluated on an r x r sub-triangulation (points not shared). Cell data: "bending_density"
 /// U_b (1/m^2), "stretching_density" U_s (1), "element" (index), each constant per element.
 SurfaceSnapshot shell_snapshot(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                               double excess_angle, int refinement = 1);
+                               double excess_angle, int refinement);
 
 }  // namespace growshell
