@@ -6,7 +6,9 @@ usage: scripts/plot_econe_contact.py DIR
 DIR is an econe_contact study's output directory (growshell run). Top: E_b-hat against phi_e
 of the contact-free cone (cone/branch.csv), the symmetric branch with contact
 (symmetric/branch.csv), the skewed branch (skewed/branch.csv) and, where the study traced it,
-the cone turned against the mesh (turned/branch.csv), stable samples
+the cone turned against the mesh (turned/branch.csv) and the winding beyond the skewed branch
+(wound/branch.csv, study.wind_to: strict minima only, its jumps marked) and the n-fold cones
+of study.compare_modes (cone_nN/branch.csv, without contact), stable samples
 (n_negative = 0) solid and unstable ones dashed. Bottom: the total energy of each branch
 relative to the symmetric branch's at the same phi_e, (E - E_sym) / E_sym, so that the crossing
 shows, and the turned cone's lies below it. The special values of results.json (first contact, phi_e^crit by stability and by
@@ -45,6 +47,12 @@ def main():
     symmetric = read_rows(directory / "symmetric" / "branch.csv", contact, fail)
     skewed = read_rows(directory / "skewed" / "branch.csv", contact, fail)
     turned = read_rows(directory / "turned" / "branch.csv", contact, fail)
+    wound = read_rows(directory / "wound" / "branch.csv", contact, fail)
+    others = []
+    for entry in results.get("compared_modes", []):
+        rows = [r for r in read_rows(directory / entry["csv"], base, fail)
+                if r["phi_e"] >= (entry.get("phi_branch") or 0.0)]
+        others.append((f"{entry['mode']}-fold cone, without contact", rows))
     if not cone and not symmetric:
         fail(f"{directory} has neither cone/branch.csv nor symmetric/branch.csv samples")
     # The skewed branch is written as traced: down from the relaxed state, then up from it.
@@ -63,7 +71,10 @@ def main():
     branches = [("cone without contact", cone, "tab:gray"),
                 ("symmetric, with contact", symmetric, "tab:blue"),
                 ("skewed, with contact", skewed, "tab:red"),
-                ("turned against the mesh, with contact", turned, "tab:orange")]
+                ("turned against the mesh, with contact", turned, "tab:orange"),
+                ("grown on from the skewed cone (winding)", wound, "tab:brown")]
+    branches += [(name, rows, color) for (name, rows), color in
+                 zip(others, ["tab:green", "tab:cyan", "tab:pink", "tab:olive"])]
     for name, rows, color in branches:
         labelled = False
         for first, last, stable in stability_runs([r["n_negative"] for r in rows]):
@@ -81,6 +92,11 @@ def main():
             if points:
                 bottom.plot([p for p, _ in points], [v for _, v in points], style, color=color,
                             linewidth=1.5)
+    for jump in (results.get("wound") or {}).get("jumps", []):
+        top.axvline(jump, color="tab:brown", linestyle=":", linewidth=0.8)
+        top.annotate(f"jump {jump:.3f}", (jump, 0.0), xycoords=("data", "axes fraction"),
+                     xytext=(2, 4), textcoords="offset points", fontsize=7, color="tab:brown",
+                     rotation=90)
     top.plot([], [], "k-", label="stable")
     top.plot([], [], "k--", label="unstable")
     # (key, label, relation, colour): a phi_e^crit by energy met only at the skewed trace's

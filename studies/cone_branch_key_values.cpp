@@ -36,7 +36,10 @@ const RecordedEvent* largest_eb_max(const BranchRecord& record) {
 }  // namespace
 
 void set_cone_branch_key_values(const BranchRecord& record, ConeBranchResults& results) {
-  results.phi_branch = phi_of(first_event(record, "branch_point", "flat"));
+  // The branch point the cone left from; a record without that event (written before it
+  // existed, always of the two-fold cone) has it as its first branch point.
+  const RecordedEvent* entry = first_event(record, "cone_entry");
+  results.phi_branch = phi_of(entry ? entry : first_event(record, "branch_point", "flat"));
   const RecordedEvent* eb = largest_eb_max(record);
   results.phi_max = phi_of(eb);
   results.eb_hat_max = eb ? eb->value("eb_hat") : std::nullopt;

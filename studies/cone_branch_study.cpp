@@ -425,6 +425,15 @@ bool ConeBranchRun::trace_from_flat(BranchTrace& trace) {
   }
   say(line_printf("# switching onto the %d-fold cone at phi_e = %.7f", scene_.continuation.mode,
                   entry.branch_point.parameter));
+  // The branch point the cone leaves from (results.json's phi_branch): the flat branch may
+  // have passed others first (the modes below n, or the other half of a split pair).
+  {
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"kind\": \"cone_entry\", \"phi_e\": "
+      << entry.branch_point.parameter << ", \"mode\": " << scene_.continuation.mode << "}";
+    record_->add_event(j.str(), {"cone_entry", entry.branch_point.parameter, "flat",
+                                 {{"mode", static_cast<double>(scene_.continuation.mode)}}});
+  }
   branch_ = "cone";
   const BranchPointDeparture departure =
       leave_branch_point(entry, [&](const Eigen::VectorXd& start, const Eigen::VectorXd& mode) {

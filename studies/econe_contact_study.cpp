@@ -53,6 +53,15 @@ const std::vector<std::string> kColumns = {"phi_e",         "E_stretch",
 
 constexpr const char* kConeDir = "cone";
 
+/// The cone_branch study of stage 7 for the n-fold cone: stage 1's, with mode n, in DIR/cone_nN.
+Scene compared_mode_scene(const Scene& scene, int n) {
+  Scene mode = econe_contact_cone_scene(scene);
+  mode.continuation.mode = n;
+  mode.study.orientation_check_at.reset();  // the two-fold cone's S4 check
+  mode.output.directory = (fs::path(scene.output.directory) / ("cone_n" + std::to_string(n))).string();
+  return mode;
+}
+
 /// Whether an S4 defect (relative to R) says the state is not S4-symmetric: above the scene's
 /// threshold, and below half the radius, beyond which the measure failed (fold directions not
 /// found on a turned state) rather than found a cone. One rule for the skewed search, the
@@ -78,6 +87,8 @@ class EconeContactRun {
   void trace_cone();
   void set_up_contact();
   void check_orientation();
+  std::vector<BranchEnergySample> saved_energies(const std::string& directory, double from,
+                                                 double below) const;
   std::vector<BranchEnergySample> cone_energies(double below) const;
   /// Writes the sample to `record` (row and state) and the log; returns its S4 defect (NaN
   /// for a state without fold directions).
@@ -86,6 +97,7 @@ class EconeContactRun {
   void summarize(const EconeBranchResult& traced);
   void trace_turned();
   void check_hard_contact_points();
+  void trace_compared_modes();
   void wind_up();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
@@ -109,9 +121,20 @@ class EconeContactRun {
   EconeBranchOptions options_;
   BranchSample start_;  ///< the cone's last state
   std::unique_ptr<BranchRecord> symmetric_, skewed_, turned_, wound_;
-  /// The skewed cone's highest stable sample that breaks S4: where the winding starts.
-  Eigen::VectorXd top_skewed_;
-  double top_skewed_phi_ = -std::numeric_limits<double>::infinity();
+  /// The highest stable sample that breaks S4 of the skewed and of the turned branch: where
+  /// the winding may start.
+  struct TopSample {
+    Eigen::VectorXd x;
+    double phi = -std::numeric_limits<double>::infinity();
+    double energy = 0.0;  ///< E_s + E_b + P
+  };
+  TopSample top_skewed_, top_turned_;
+  void keep_if_top(TopSample& top, const ContactBranchSample& s, double defect) const {
+    if (s.sample.negative_eigenvalues == 0 && breaks_s4(defect, scene_.study.symmetry_threshold) &&
+        s.sample.parameter > top.phi)
+      top = {s.sample.x, s.sample.parameter,
+             s.stretching_energy + s.bending_energy + s.penalty_energy};
+  }
   /// The orientation check's lowest relaxed state that breaks S4 (empty if none): the start of
   /// the turned branch.
   Eigen::VectorXd turned_start_;
@@ -124,6 +147,9 @@ EconeContactRun::EconeContactRun(const Scene& scene, ExistingOutput existing,
                                  const StudyProgress& progress)
     : scene_(scene), existing_(existing), progress_(progress), dir_(scene.output.directory) {
   validate_scene(scene_);
+  // The cone_branch studies of stages 1 and 7, before anything is written.
+  validate_scene(econe_contact_cone_scene(scene_));
+  for (const int n : scene_.study.compare_modes) validate_scene(compared_mode_scene(scene_, n));
   if (scene_.study.kind != StudyKind::EconeContact)
     throw std::invalid_argument("run_econe_contact_study: the scene's study.kind is " +
                                 study_kind_name(scene_.study.kind) + ", not econe_contact");
@@ -326,13 +352,13 @@ void EconeContactRun::check_orientation() {
   results_.orientation_check = std::move(r);
 }
 
-/// The contact-free cone's energies and slopes below `below`, by increasing phi_e from its
-/// branch point on: the symmetric branch ahead of the trace with contact, for the crossing.
-std::vector<BranchEnergySample> EconeContactRun::cone_energies(double below) const {
-  const std::string cone_dir = (fs::path(dir_) / kConeDir).string();
+/// The energies and slopes of the saved states in `directory` with phi_e in (from, below), by
+/// increasing phi_e (a later state that does not increase it is skipped), each evaluated
+/// without contact.
+std::vector<BranchEnergySample> EconeContactRun::saved_energies(const std::string& directory,
+                                                                double from, double below) const {
   std::vector<BranchEnergySample> out;
-  const double from = results_.phi_branch.value_or(0.0);
-  for (const fs::path& file : saved_state_files(cone_dir)) {
+  for (const fs::path& file : saved_state_files(directory)) {
     const BranchSample s = load_branch_state(file.string(), model_->dimension(), fingerprint_);
     if (!(s.parameter > from && s.parameter < below)) continue;
     if (!out.empty() && !(s.parameter > out.back().parameter)) continue;
@@ -341,6 +367,13 @@ std::vector<BranchEnergySample> EconeContactRun::cone_energies(double below) con
     out.push_back({s.parameter, d.stretching_energy + d.bending_energy, d.energy_slope});
   }
   return out;
+}
+
+/// The contact-free cone's energies and slopes below `below`, by increasing phi_e from its
+/// branch point on: the symmetric branch ahead of the trace with contact, for the crossing.
+std::vector<BranchEnergySample> EconeContactRun::cone_energies(double below) const {
+  return saved_energies((fs::path(dir_) / kConeDir).string(), results_.phi_branch.value_or(0.0),
+                        below);
 }
 
 double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
@@ -536,6 +569,7 @@ void EconeContactRun::trace_turned() {
       return;
     }
     const double defect = record_sample("turned", *turned_, s);
+    keep_if_top(top_turned_, s, defect);
     if (breaks_s4(defect, threshold))
       t.lowest_phi_breaking_s4 =
           std::min(t.lowest_phi_breaking_s4.value_or(s.sample.parameter), s.sample.parameter);
@@ -656,7 +690,59 @@ void EconeContactRun::check_hard_contact_points() {
   }
 }
 
-/// Stage 7 (study.wind_to): from the skewed cone's highest stable state, the sheet grown on in
+/// Stage 7 (study.compare_modes): each n-fold cone traced without contact from the flat sheet
+/// (a cone_branch study in DIR/cone_nN, resumed like stage 1), and its energy set against the
+/// two-fold cone's at the same phi_e.
+void EconeContactRun::trace_compared_modes() {
+  std::vector<BranchStateSample> two_fold = symmetric_samples();
+  const auto by_phi = [](const BranchStateSample& a, const BranchStateSample& b) {
+    return a.phi_e < b.phi_e;
+  };
+  std::sort(two_fold.begin(), two_fold.end(), by_phi);
+  for (const int n : scene_.study.compare_modes) {
+    const Scene mode_scene = compared_mode_scene(scene_, n);
+    const std::string name = fs::path(mode_scene.output.directory).filename().string();
+    ConeBranchStudyOptions options = cone_branch_study_options(mode_scene);
+    if (existing_ == ExistingOutput::Resume && fs::exists(fs::path(mode_scene.output.directory)))
+      options.start = ConeBranchStart::LastState;
+    else
+      fs::remove_all(mode_scene.output.directory);
+    say("# stage 7: the " + std::to_string(n) + "-fold cone without contact, into " +
+        mode_scene.output.directory);
+    const ConeBranchStudy cone =
+        run_cone_branch_study(mode_scene, options, mode_scene.output.directory, progress_);
+    EconeComparedMode m;
+    m.mode = n;
+    m.directory = name;
+    m.phi_branch = cone.results.phi_branch;
+    m.phi_max = cone.results.phi_max;
+    m.eb_hat_max = cone.results.eb_hat_max;
+    m.phi_first_contact = cone.results.phi_gap_h;
+    m.highest_phi = cone.results.phi_last;
+    m.completed = cone.results.completed;
+    m.end = cone.results.end;
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const BranchEnergySample& s :
+         saved_energies(mode_scene.output.directory, m.phi_branch.value_or(inf), inf)) {
+      const std::optional<double> reference = branch_energy_at(two_fold, s.parameter);
+      if (!reference || !(*reference > 0.0)) continue;
+      const double above = (s.energy - *reference) / *reference;
+      if (!m.lowest_energy_above_two_fold || above < *m.lowest_energy_above_two_fold) {
+        m.lowest_energy_above_two_fold = above;
+        m.lowest_energy_above_two_fold_phi = s.parameter;
+      }
+    }
+    say("# the " + std::to_string(n) + "-fold cone: " + m.end + "; " +
+        (m.lowest_energy_above_two_fold
+             ? "at least " + fixed(100.0 * *m.lowest_energy_above_two_fold, 3) +
+                   " % above the two-fold cone (at phi_e = " +
+                   fixed(*m.lowest_energy_above_two_fold_phi, 4) + ")"
+             : std::string("not compared with the two-fold cone")));
+    results_.compared_modes.push_back(std::move(m));
+  }
+}
+
+/// Stage 8 (study.wind_to): from the skewed cone's highest stable state, the sheet grown on in
 /// natural steps, each a strict minimum of shell + penalty (solvers/contact/
 /// contact_growth_path.hpp), so that where a stable state ends it drops onto the next one: the
 /// wound-up cones. Every accepted state to DIR/wound (row, state), the shapes at
@@ -665,20 +751,33 @@ void EconeContactRun::wind_up() {
   fs::remove_all(fs::path(dir_) / "wound");  // stale once the branches are traced again
   if (!scene_.study.wind_to) return;
   const double target = *scene_.study.wind_to;
-  if (top_skewed_.size() == 0) {
-    const std::string why = "no winding: the skewed branch has no stable sample to start from";
-    say("# stage 7: " + why);
+  // The start: the skewed cone's top, or the turned cone's (its core skews too, and where the
+  // skewed search found no state it is the only cone that breaks S4): the higher of the two,
+  // and the lower in energy where both reach the same phi_e (within a step).
+  const bool skewed = top_skewed_.x.size() > 0, turned = top_turned_.x.size() > 0;
+  if (!skewed && !turned) {
+    const std::string why =
+        "no winding: neither the skewed nor the turned branch has a stable sample that breaks S4";
+    say("# stage 8: " + why);
     results_.end = results_.completed ? why : results_.end + "; " + why;
     results_.completed = false;
     return;
   }
+  bool from_turned = !skewed;
+  if (skewed && turned)
+    from_turned = std::abs(top_turned_.phi - top_skewed_.phi) <= scene_.study.contact_max_step
+                      ? top_turned_.energy < top_skewed_.energy
+                      : top_turned_.phi > top_skewed_.phi;
+  const TopSample& start = from_turned ? top_turned_ : top_skewed_;
   const auto started = std::chrono::steady_clock::now();
   wound_ = std::make_unique<BranchRecord>(dir_ + "/wound", kColumns, BranchRecord::Start::Fresh);
   EconeWindUp w;
-  w.start_phi = top_skewed_phi_;
+  w.start_branch = from_turned ? "turned" : "skewed";
+  w.start_phi = start.phi;
   w.target = target;
-  say("# stage 7: the sheet grown on from the skewed cone's highest stable state at phi_e = " +
-      fixed(top_skewed_phi_, 6) + " to " + fixed(target, 6) + ", a minimum at every step");
+  say("# stage 8: the sheet grown on from the " + w.start_branch +
+      " cone's highest stable state at phi_e = " + fixed(start.phi, 6) + " to " +
+      fixed(target, 6) + ", a minimum at every step");
   ContactGrowthOptions growth;
   growth.contact = options_.contact;
   growth.contact.symmetric_subspace = nullptr;
@@ -707,8 +806,8 @@ void EconeContactRun::wind_up() {
     }
     record_sample("wound", *wound_, p.sample);
   };
-  Eigen::VectorXd x = top_skewed_;
-  double phi = top_skewed_phi_;
+  Eigen::VectorXd x = start.x;
+  double phi = start.phi;
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, x, pinned_, growth.contact);
   ContactGrowthResult g;
   for (const double stop : stops) {
@@ -740,7 +839,7 @@ void EconeContactRun::wind_up() {
   w.reached = g.reached_target;
   w.end = w.reached ? "reached phi_e = " + fixed(target, 6) : g.message;
   w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  say("# stage 7: " + w.end + " (" + std::to_string(w.steps) + " steps, " +
+  say("# stage 8: " + w.end + " (" + std::to_string(w.steps) + " steps, " +
       std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) + " jumps)");
   if (!w.reached) {
     const std::string why = "winding: " + w.end;
@@ -776,12 +875,7 @@ EconeContactResults EconeContactRun::run() {
     if (which == EconeBranch::Symmetric && std::isfinite(defect))
       results_.max_s4_defect_symmetric =
           std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
-    if (which == EconeBranch::Skewed && s.sample.negative_eigenvalues == 0 &&
-        breaks_s4(defect, scene_.study.symmetry_threshold) &&
-        s.sample.parameter > top_skewed_phi_) {
-      top_skewed_phi_ = s.sample.parameter;
-      top_skewed_ = s.sample.x;
-    }
+    if (which == EconeBranch::Skewed) keep_if_top(top_skewed_, s, defect);
   };
   callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
     record_special(to_string(which), record(which), sp);
@@ -800,6 +894,7 @@ EconeContactResults EconeContactRun::run() {
   summarize(traced);
   trace_turned();
   check_hard_contact_points();
+  trace_compared_modes();
   wind_up();
 
   EconeContactResults& r = results_;
@@ -825,7 +920,11 @@ EconeContactResults EconeContactRun::run() {
 Scene econe_contact_cone_scene(const Scene& scene) {
   Scene cone = scene;
   cone.study.kind = StudyKind::ConeBranch;
-  cone.study.hard_contact_at.clear();  // the contact era's, not the contact-free cone's
+  // The contact era's, not the contact-free cone's.
+  cone.study.hard_contact_at.clear();
+  cone.study.wind_to.reset();
+  cone.study.wind_shapes_at.clear();
+  cone.study.compare_modes.clear();
   cone.study.through_contact = false;
   cone.output.directory = (fs::path(scene.output.directory) / kConeDir).string();
   return cone;

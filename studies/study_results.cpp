@@ -160,13 +160,30 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   } else {
     j["turned"] = nullptr;
   }
+  Json modes = Json::array();
+  for (const EconeComparedMode& m : r.compared_modes)
+    modes.push_back(
+        {{"mode", m.mode},
+         {"directory", m.directory},
+         {"csv", m.directory + "/branch.csv"},
+         {"phi_branch", number_or_null(m.phi_branch)},
+         {"phi_max", number_or_null(m.phi_max)},
+         {"eb_hat_max", number_or_null(m.eb_hat_max)},
+         {"phi_first_contact", number_or_null(m.phi_first_contact)},
+         {"highest_phi", number_or_null(m.highest_phi)},
+         {"lowest_energy_above_two_fold", number_or_null(m.lowest_energy_above_two_fold)},
+         {"lowest_energy_above_two_fold_phi", number_or_null(m.lowest_energy_above_two_fold_phi)},
+         {"completed", m.completed},
+         {"end", m.end}});
+  j["compared_modes"] = modes;
   if (r.wound) {
     const EconeWindUp& w = *r.wound;
     Json shapes = Json::array();
     for (const EconeWindUp::Shape& s : w.shapes)
       shapes.push_back(
           {{"phi_e", number_or_null(s.phi_e)}, {"shell", s.shell}, {"contact", s.contact}});
-    j["wound"] = {{"start_phi", number_or_null(w.start_phi)},
+    j["wound"] = {{"start_branch", w.start_branch},
+                  {"start_phi", number_or_null(w.start_phi)},
                   {"target", number_or_null(w.target)},
                   {"reached", w.reached},
                   {"highest_phi", number_or_null(w.highest_phi)},

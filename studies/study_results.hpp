@@ -28,7 +28,8 @@ struct ConeBranchResults {
   double thickness = 0.0;  ///< h at the centre
   int mode = 2;            ///< fold number n of the cone
   StudyMesh mesh;
-  /// The first branch point on the flat branch.
+  /// The branch point on the flat branch where the n-fold cone leaves it (its cone_entry
+  /// event); the flat branch passes the lower modes' branch points before it.
   std::optional<double> phi_branch;
   /// The eb_max event (the maximum of E_b-hat on the cone) and E_b-hat there.
   std::optional<double> phi_max, eb_hat_max;
@@ -135,10 +136,30 @@ struct EconeTurnedBranch {
   std::string end;  ///< why each trace ended
 };
 
-/// The winding (study.wind_to): the sheet grown on from the skewed cone's highest stable state
-/// by minimisation at every step, each accepted state a strict minimum of shell + penalty.
+/// An n-fold cone of study.compare_modes, traced without contact from the flat sheet and
+/// compared with the two-fold cone (the contact-free cone, then the symmetric branch with
+/// contact) at the same phi_e.
+struct EconeComparedMode {
+  int mode = 3;
+  std::string directory;  ///< its cone_branch study, relative to DIR ("cone_n3")
+  std::optional<double> phi_branch, phi_max, eb_hat_max;
+  std::optional<double> phi_first_contact;  ///< its first gap = contact distance, if reached
+  std::optional<double> highest_phi;        ///< its last sample
+  /// The smallest (E_n - E_2) / E_2 over its samples where the two-fold cone was traced
+  /// (E = E_s + E_b, + P on the branch with contact), and where: above 0 if it lies above.
+  std::optional<double> lowest_energy_above_two_fold, lowest_energy_above_two_fold_phi;
+  bool completed = false;
+  std::string end;
+};
+
+/// The winding (study.wind_to): the sheet grown on from the highest stable state that breaks S4
+/// (of the skewed or the turned cone) by minimisation at every step, each accepted state a
+/// strict minimum of shell + penalty.
 struct EconeWindUp {
-  double start_phi = 0.0;  ///< the skewed cone's highest stable sample
+  /// Where it starts: the highest stable sample that breaks S4 of the "skewed" or the
+  /// "turned" branch (the higher; the lower in energy where both reach the same phi_e).
+  std::string start_branch;
+  double start_phi = 0.0;
   double target = 0.0;     ///< study.wind_to
   bool reached = false;    ///< the path reached the target
   std::optional<double> highest_phi;  ///< its last accepted state
@@ -217,6 +238,8 @@ struct EconeContactResults {
   std::optional<EconeOrientationCheck> orientation_check;
   /// The turned cone traced (when the orientation check found a lower state breaking S4).
   std::optional<EconeTurnedBranch> turned;
+  /// The n-fold cones of study.compare_modes, in its order.
+  std::vector<EconeComparedMode> compared_modes;
   /// The winding beyond the skewed branch (study.wind_to); unset if not asked for or no stable
   /// skewed state was found to start from.
   std::optional<EconeWindUp> wound;
@@ -248,7 +271,10 @@ struct EconeContactResults {
 /// energy_change_outside, lowest_eigenvalue, turn_free_index, state}]} or null), turned
 /// ({start_phi, turn_deg, lowest_phi, highest_phi, lowest_phi_breaking_s4,
 /// top_energy_relative, top_s4_defect, top_gamma, largest_energy_below_symmetric,
-/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), wound ({start_phi,
+/// largest_energy_below_symmetric_phi, phi_crit_stability, end} or null), compared_modes
+/// [{mode, directory, csv, phi_branch, phi_max, eb_hat_max, phi_first_contact, highest_phi,
+/// lowest_energy_above_two_fold, lowest_energy_above_two_fold_phi, completed, end}], wound
+/// ({start_branch, start_phi,
 /// target, reached, highest_phi, steps, failed_steps, jumps, shapes [{phi_e, shell, contact}],
 /// end, seconds} or null), warnings [strings],
 /// completed, end, cone_csv, symmetric_csv, skewed_csv, turned_csv (null without the turned

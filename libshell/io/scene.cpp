@@ -99,6 +99,14 @@ int read_int(const Json& v, const std::string& key) {
   return static_cast<int>(v.get<std::int64_t>());
 }
 
+std::vector<int> read_int_list(const Json& v, const std::string& key) {
+  if (!v.is_array()) fail(key + " must be an array of integers (got " + v.dump() + ")");
+  std::vector<int> values;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    values.push_back(read_int(v[i], key + "[" + std::to_string(i) + "]"));
+  return values;
+}
+
 bool read_bool(const Json& v, const std::string& key) {
   if (!v.is_boolean()) fail(key + " must be true or false (got " + v.dump() + ")");
   return v.get<bool>();
@@ -408,6 +416,9 @@ const Field kFields[] = {
   {"study.wind_shapes_at",
    [](Scene& s, const Json& v, const std::string& k) { s.study.wind_shapes_at = read_number_list(v, k); },
    [](const Scene& s) { return Json(s.study.wind_shapes_at); }},
+  {"study.compare_modes",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.compare_modes = read_int_list(v, k); },
+   [](const Scene& s) { return Json(s.study.compare_modes); }},
 };
 // clang-format on
 
@@ -496,11 +507,24 @@ Scene default_scene() { return Scene{}; }
 namespace {
 
 /// The series keys: complete for study.kind series, absent for every other study.
-/// study.wind_to and study.wind_shapes_at: econe_contact only, beyond continuation.phi_max.
+/// study.wind_to and study.wind_shapes_at (econe_contact only, beyond continuation.phi_max),
+/// and study.compare_modes (econe_contact only, modes 3 and up).
 void validate_winding(const Scene& scene) {
   const SceneStudy& st = scene.study;
   const bool econe = st.kind == StudyKind::EconeContact ||
                      (st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact);
+  if (!st.compare_modes.empty() && !econe)
+    fail("study.compare_modes is read only by the econe_contact study (this scene's study is \"" +
+         enum_name(kStudyKindNames, st.kind) + "\")");
+  for (std::size_t i = 0; i < st.compare_modes.size(); ++i) {
+    const std::string key = "study.compare_modes[" + std::to_string(i) + "]";
+    if (st.compare_modes[i] < 3)
+      fail(key + " = " + std::to_string(st.compare_modes[i]) +
+           " must be at least 3: the two-fold cone is the study's own");
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.compare_modes[j] == st.compare_modes[i])
+        fail(key + " = " + std::to_string(st.compare_modes[i]) + " is listed twice");
+  }
   if ((st.wind_to || !st.wind_shapes_at.empty()) && !econe)
     fail("study.wind_to and study.wind_shapes_at are read only by the econe_contact study (this "
          "scene's study is \"" + enum_name(kStudyKindNames, st.kind) + "\")");

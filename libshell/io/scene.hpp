@@ -293,6 +293,11 @@ struct SceneStudy {
   /// at which the winding stops once and writes the shape (shell and contact proxy, VTU); the
   /// shape at wind_to is always written.
   std::vector<double> wind_shapes_at;
+  /// econe_contact only: the n-fold cones (each n >= 3, no two equal) traced from the flat
+  /// sheet without contact up to their first contact or continuation.phi_max, beside the
+  /// two-fold one, and compared with it (physics.md, item 6: the n = 3 cone lies above). Empty
+  /// by default.
+  std::vector<int> compare_modes;
   /// econe_contact (at its contact start) and the cone_branch study's check at
   /// orientation_check_at: turns of the fold pattern over the material (degrees, each finite and
   /// in (-90, 90), none 0, no two equal) by which the cone's last contact-free state is turned,

@@ -842,6 +842,67 @@ TEST(Scene, SeriesReadsItsKeysAndRefusesBadOnesByName) {
                   "read only by study.kind = \"series\""));
 }
 
+TEST(Scene, WindToIsTheEconeStudysAbovePhiMaxWithItsShapesBetween) {
+  const Scene s = parse_scene(
+      R"({"continuation": {"phi_max": 7.3},
+          "study": {"kind": "econe_contact", "wind_to": 12.566, "wind_shapes_at": [9.0, 11.0]}})",
+      "test");
+  ASSERT_TRUE(s.study.wind_to.has_value());
+  EXPECT_EQ(*s.study.wind_to, 12.566);
+  EXPECT_EQ(s.study.wind_shapes_at, (std::vector<double>{9.0, 11.0}));
+  const Scene back = parse_scene(scene_to_json(s), "round trip");
+  EXPECT_EQ(back.study.wind_to, s.study.wind_to);
+  EXPECT_EQ(back.study.wind_shapes_at, s.study.wind_shapes_at);
+  // Off by default, and null turns it off.
+  EXPECT_FALSE(default_scene().study.wind_to.has_value());
+  EXPECT_FALSE(parse_scene(R"({"study": {"kind": "econe_contact", "wind_to": null}})", "t")
+                   .study.wind_to.has_value());
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  const auto has = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
+                                     "study": {"kind": "econe_contact", "wind_to": 7.0}})")),
+                  "study.wind_to = 7 must be finite and above continuation.phi_max = 7.3"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "wind_to": "auto"}})")),
+                  "study.wind_to must be a number or null"));
+  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
+                                     "study": {"kind": "econe_contact", "wind_to": 9,
+                                               "wind_shapes_at": [8, 9.5]}})")),
+                  "study.wind_shapes_at[1] = 9.5 must lie in"));
+  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
+                                     "study": {"kind": "econe_contact", "wind_to": 9,
+                                               "wind_shapes_at": [8, 8]}})")),
+                  "study.wind_shapes_at[1] = 8 is listed twice"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "wind_shapes_at": [8]}})")),
+                  "study.wind_to is null"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"wind_to": 9}})")),
+                  "read only by the econe_contact study"));
+}
+
+TEST(Scene, CompareModesAreTheEconeStudysModesAboveTwo) {
+  const Scene s =
+      parse_scene(R"({"study": {"kind": "econe_contact", "compare_modes": [3, 4]}})", "test");
+  EXPECT_EQ(s.study.compare_modes, (std::vector<int>{3, 4}));
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.compare_modes,
+            s.study.compare_modes);
+  EXPECT_TRUE(default_scene().study.compare_modes.empty());
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  const auto has = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [2]}})")),
+                  "study.compare_modes[0] = 2 must be at least 3"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [3, 3]}})")),
+                  "study.compare_modes[1] = 3 is listed twice"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [3.5]}})")),
+                  "study.compare_modes[0] must be an integer"));
+  EXPECT_TRUE(has(error_of(parse(R"({"study": {"compare_modes": [3]}})")),
+                  "read only by the econe_contact study"));
+}
+
 TEST(Scene, HardContactAtIsTheEconeStudysAndBadListsAreRefusedByName) {
   const Scene s = parse_scene(
       R"({"study": {"kind": "econe_contact", "hard_contact_at": [6.8, 7.0]}})", "test");

@@ -32,8 +32,17 @@
 #  - stage 6 (study.hard_contact_at [7.0]): both branches at 7.0 under Ipopt's hard
 #    constraints, converged with the gap >= 0.99 h; the held cone keeps S4 and gamma = pi/2;
 #    the program hard_contact_at gives the study's numbers for the turned cone.
+#  - stage 7 (study.compare_modes [3]): the three-fold cone, traced without contact, leaves
+#    the flat sheet at c3 h^2 / R^2 (physics.md: c3 = 21.1087; measured 0.034009, +0.7 %; within 5 %, this mesh's error
+#    for n = 2 being 1.1 %), reaches 7.3 without contact, and lies above the two-fold cone
+#    wherever both were traced (physics.md, item 6);
+#  - stage 8 (study.wind_to 7.45, shapes at 7.4): the sheet grown on from the turned cone's
+#    highest stable sample (7.301; the skewed cone's top lies 0.48 % above it in energy) by
+#    minimisation, in steps of at most 0.05, every state a strict minimum, continuing that
+#    branch (E_b-hat continuous, the skew growing: S4 defect 0.0089 -> 0.0096 -> 0.0107 ->
+#    0.0126 here), with its shapes written at 7.4 and 7.45.
 # About 4 minutes (the orientation check about 20 s of it, the turned branch about 40 s, the
-# Ipopt checks about 60 s). Variables: PROGRAM, HARD_CONTACT_PROGRAM (hard_contact_at), OUT.
+# Ipopt checks about 60 s, the three-fold cone 18 s, the winding 10 s). Variables: PROGRAM, HARD_CONTACT_PROGRAM (hard_contact_at), OUT.
 # Quoted strings in if() are strings, not names of variables (the script sets one called turned).
 cmake_policy(SET CMP0054 NEW)
 file(REMOVE_RECURSE "${OUT}")
@@ -43,7 +52,8 @@ file(WRITE "${OUT}/econe.json"
      " \"physics\": {\"contact_exclusion_radius\": 0.32},\n"
      " \"continuation\": {\"phi_max\": 7.3},\n"
      " \"study\": {\"kind\": \"econe_contact\", \"skew_search_at\": 7.2, \"eigenmodes\": 0,\n"
-     "           \"ipopt_check\": false, \"hard_contact_at\": [7.0]},\n"
+     "           \"ipopt_check\": false, \"hard_contact_at\": [7.0],\n"
+     "           \"wind_to\": 7.45, \"wind_shapes_at\": [7.4], \"compare_modes\": [3]},\n"
      " \"output\": {\"write_vtk\": false}}\n")
 execute_process(COMMAND "${PROGRAM}" run "${OUT}/econe.json" --out "${OUT}/run"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
@@ -225,4 +235,66 @@ if(HARD_CONTACT_PROGRAM)
 endif()
 if(NOT EXISTS "${OUT}/run/econe_contact.png")
   message(WARNING "no econe_contact.png (matplotlib missing?)")
+endif()
+# Stage 7: the winding from the skewed cone's top.
+string(JSON wound GET "${results}" wound)
+foreach(key reached start_branch start_phi highest_phi failed_steps)
+  string(JSON wound_${key} GET "${wound}" ${key})
+endforeach()
+string(JSON wound_shapes LENGTH "${wound}" shapes)
+if(NOT wound_reached OR NOT wound_start_branch STREQUAL "turned" OR wound_start_phi LESS 7.29 OR wound_highest_phi LESS 7.4499 OR
+   NOT wound_shapes EQUAL 2)
+  message(FATAL_ERROR "the winding did not run from the skewed cone's top to 7.45 with its two "
+                      "shapes:\n${wound}")
+endif()
+foreach(k 0 1)
+  string(JSON shell GET "${wound}" shapes ${k} shell)
+  string(JSON contact GET "${wound}" shapes ${k} contact)
+  foreach(file "${shell}" "${contact}")
+    file(READ "${OUT}/run/${file}" head LIMIT 120)
+    if(NOT head MATCHES "<VTKFile type=\"UnstructuredGrid\"")
+      message(FATAL_ERROR "${file} is not a VTU file")
+    endif()
+  endforeach()
+endforeach()
+# Its rows against its start, the top of the branch it starts from (the last row of that
+# branch's record, traced upwards to 7.3): forward by at most 0.05 (less for the stop at 7.4), each a minimum, E_b-hat moving
+# by less than 0.4 per radian (+ 1e-3; measured 0.05 to 0.27 per radian from 7.3 to 7.7, a
+# drop onto another state moves it by 0.1 or more), the skew growing.
+set(check_wound [=[
+import csv, sys
+skewed = list(csv.DictReader(open(sys.argv[1])))
+wound = list(csv.DictReader(open(sys.argv[2])))
+if len(wound) < 3:
+    sys.exit(f"the winding has {len(wound)} rows, not at least 3")
+previous = skewed[-1]
+if abs(float(previous["phi_e"]) - float(sys.argv[3])) > 1e-9:
+    sys.exit(f"the winding starts at {sys.argv[3]}, not at its branch's top {previous['phi_e']}")
+for row in wound:
+    step = float(row["phi_e"]) - float(previous["phi_e"])
+    jump = abs(float(row["Eb_hat"]) - float(previous["Eb_hat"]))
+    if not (0 < step <= 0.05 + 1e-9 and float(row["n_negative"]) == 0 and jump < 0.4 * step + 1e-3
+            and float(row["s4_defect"]) > float(previous["s4_defect"])):
+        sys.exit(f"wound row {row} after {previous}")
+    previous = row
+]=])
+execute_process(COMMAND /usr/bin/python3 -c "${check_wound}" "${OUT}/run/${wound_start_branch}/branch.csv"
+                        "${OUT}/run/wound/branch.csv" ${wound_start_phi}
+                RESULT_VARIABLE wound_bad ERROR_VARIABLE wound_why)
+if(NOT wound_bad EQUAL 0)
+  message(FATAL_ERROR "the winding's record: ${wound_why}")
+endif()
+# Stage 7: the three-fold cone beside the two-fold one.
+string(JSON three GET "${results}" compared_modes 0)
+foreach(key mode phi_branch highest_phi lowest_energy_above_two_fold csv)
+  string(JSON three_${key} GET "${three}" ${key})
+endforeach()
+execute_process(COMMAND /usr/bin/python3 -c
+                        "import sys; b = float(sys.argv[1]); sys.exit(0 if abs(b / (21.1087 * 0.04**2) - 1) < 0.05 else 1)"
+                        ${three_phi_branch} RESULT_VARIABLE off)
+if(NOT three_mode EQUAL 3 OR NOT off EQUAL 0 OR three_highest_phi LESS 7.29 OR
+   NOT three_lowest_energy_above_two_fold GREATER 0 OR NOT EXISTS "${OUT}/run/${three_csv}")
+  message(FATAL_ERROR "the three-fold cone: branch point ${three_phi_branch} (c3 h^2 = "
+                      "0.03377), to ${three_highest_phi}, at least "
+                      "${three_lowest_energy_above_two_fold} above the two-fold cone:\n${three}")
 endif()

@@ -72,6 +72,26 @@ def main():
             with_turned = run_script("plot_econe_contact.py", d)
             check(with_turned.returncode == 0 and os.path.isfile(figure),
                   f"the figure with the turned branch is drawn: {with_turned.stderr!r}")
+            # With the winding (its jumps marked) and a three-fold cone of compare_modes.
+            branch(os.path.join(d, "wound", "branch.csv"),
+                   [(7.35, 0.735, 0), (7.4, 0.74, 0), (7.45, 0.76, 0)])
+            branch(os.path.join(d, "cone_n3", "branch.csv"),
+                   [(0.0, 0.0, 0), (0.034, 0.0, 0), (3.0, 0.9, 2), (7.3, 0.8, 2)], contact=False)
+            results["wound"] = {"jumps": [7.4]}
+            results["compared_modes"] = [{"mode": 3, "csv": "cone_n3/branch.csv",
+                                          "phi_branch": 0.034}]
+            with open(os.path.join(d, "results.json"), "w") as f:
+                json.dump(results, f)
+            os.remove(figure)
+            with_more = run_script("plot_econe_contact.py", d)
+            check(with_more.returncode == 0 and os.path.isfile(figure),
+                  f"the figure with the winding and the n = 3 cone is drawn: {with_more.stderr!r}")
+            # A compared mode whose record lacks a column is refused by name.
+            with open(os.path.join(d, "cone_n3", "branch.csv"), "w") as f:
+                f.write("phi_e,E_stretch\n1,2\n")
+            broken = run_script("plot_econe_contact.py", d)
+            check(broken.returncode != 0 and "cone_n3" in broken.stderr,
+                  f"a broken n = 3 record is refused by name: {broken.stderr!r}")
     check.finish()
 
 

@@ -47,6 +47,17 @@ TEST_F(ConeBranchKeyValues, FromTheRecordedEventsAndRows) {
   EXPECT_EQ(results.max_s4_defect_before_contact, 3e-7);
   EXPECT_EQ(results.phi_last, 6.3);
   EXPECT_EQ(results.thickness, 0.04);  // not the record's
+
+  // The three-fold cone leaves the flat branch at its own branch point, after the two-fold
+  // one's: phi_branch is the cone_entry event's.
+  BranchRecord three((dir_ / "three").string(), kColumns, BranchRecord::Start::Fresh);
+  three.add_event("{}", {"branch_point", 0.017, "flat", {}});
+  three.add_event("{}", {"branch_point", 0.034, "flat", {}});
+  three.add_event("{}", {"cone_entry", 0.034, "flat", {{"mode", 3.0}}});
+  three.add_event("{}", {"branch_point", 0.05, "cone", {}});
+  ConeBranchResults three_results;
+  set_cone_branch_key_values(three, three_results);
+  EXPECT_EQ(three_results.phi_branch, 0.034);
 }
 
 TEST_F(ConeBranchKeyValues, NullWhereTheRecordHasNothing) {

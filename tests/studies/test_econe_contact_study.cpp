@@ -77,6 +77,8 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "hard_contact",
                                              "orientation_check",
                                              "turned",
+                                             "compared_modes",
+                                             "wound",
                                              "warnings",
                                              "completed",
                                              "end",
@@ -84,6 +86,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "symmetric_csv",
                                              "skewed_csv",
                                              "turned_csv",
+                                             "wound_csv",
                                              "events",
                                              "wall_seconds"};
   EXPECT_EQ(keys, expected);
@@ -111,6 +114,44 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_TRUE(k["ipopt"]["converged"].get<bool>());
   EXPECT_DOUBLE_EQ(k["ipopt"]["min_distance_over_h"].get<double>(), 1.01);
   EXPECT_TRUE(j["orientation_check"].is_null());  // not run
+  // study.wind_to: null without it; with it, the path's ends, its jumps and its shapes.
+  EXPECT_TRUE(j["wound"].is_null());
+  EXPECT_TRUE(j["compared_modes"].is_array() && j["compared_modes"].empty());
+  EconeContactResults modes = sample_results();
+  EconeComparedMode three;
+  three.mode = 3;
+  three.directory = "cone_n3";
+  three.phi_branch = 0.034;
+  three.lowest_energy_above_two_fold = 0.12;
+  three.lowest_energy_above_two_fold_phi = 7.3;
+  modes.compared_modes.push_back(three);
+  const auto mj = nlohmann::json::parse(econe_contact_results_json(modes));
+  EXPECT_EQ(mj["compared_modes"][0]["mode"].get<int>(), 3);
+  EXPECT_EQ(mj["compared_modes"][0]["csv"], "cone_n3/branch.csv");
+  EXPECT_EQ(mj["compared_modes"][0]["lowest_energy_above_two_fold"].get<double>(), 0.12);
+  EXPECT_TRUE(mj["compared_modes"][0]["phi_first_contact"].is_null());
+  EXPECT_TRUE(j["wound_csv"].is_null());
+  EconeContactResults wound = sample_results();
+  EconeWindUp w;
+  w.start_branch = "turned";
+  w.start_phi = 7.29;
+  w.target = 12.5;
+  w.highest_phi = 8.91;
+  w.steps = 33;
+  w.failed_steps = 2;
+  w.jumps = {8.91};
+  w.shapes.push_back({8.5, "wound/shape_phi8.5.vtu", "wound/shape_phi8.5_contact.vtu"});
+  w.end = "step below min_step";
+  wound.wound = w;
+  const auto wj = nlohmann::json::parse(econe_contact_results_json(wound));
+  EXPECT_FALSE(wj["wound"]["reached"].get<bool>());
+  EXPECT_EQ(wj["wound"]["start_branch"], "turned");
+  EXPECT_EQ(wj["wound"]["highest_phi"].get<double>(), 8.91);
+  EXPECT_EQ(wj["wound"]["jumps"][0].get<double>(), 8.91);
+  EXPECT_EQ(wj["wound"]["shapes"][0]["contact"], "wound/shape_phi8.5_contact.vtu");
+  EXPECT_EQ(wj["wound"]["steps"].get<int>(), 33);
+  EXPECT_EQ(wj["wound_csv"], "wound/branch.csv");
+  EXPECT_EQ(wj["events"].back(), "wound/events.json");
   // study.hard_contact_at: each check with its branch, the angle asked for, its file and the
   // comparison's fields.
   EXPECT_TRUE(j["hard_contact"].is_array() && j["hard_contact"].empty());
@@ -219,6 +260,18 @@ TEST(EconeContactConeScene, IsTheContactFreeConeBranchStudyInTheConeFolder) {
   EXPECT_EQ(std::filesystem::path(cone.output.directory), std::filesystem::path("out/econe/cone"));
   EXPECT_EQ(thickness_at_radius(cone.thickness, 0.0, 1.0),
             thickness_at_radius(scene.thickness, 0.0, 1.0));
+  // The contact era's keys are not the contact-free cone's: a scene that winds up gives a cone
+  // scene without the winding, which validates.
+  scene.study.wind_to = 12.5;
+  scene.study.wind_shapes_at = {8.0};
+  scene.study.hard_contact_at = {7.0};
+  scene.study.compare_modes = {3};
+  const Scene cone_of_winding = econe_contact_cone_scene(scene);
+  EXPECT_TRUE(cone_of_winding.study.compare_modes.empty());
+  EXPECT_FALSE(cone_of_winding.study.wind_to.has_value());
+  EXPECT_TRUE(cone_of_winding.study.wind_shapes_at.empty());
+  EXPECT_TRUE(cone_of_winding.study.hard_contact_at.empty());
+  EXPECT_NO_THROW(validate_scene(cone_of_winding));
 }
 
 TEST_F(EconeContact, RefusesBadInputBeforeWritingAnything) {
