@@ -11,7 +11,8 @@ the cone turned against the mesh (turned/branch.csv) and the winding beyond the 
 of study.compare_modes (cone_nN/branch.csv, without contact), stable samples
 (n_negative = 0) solid and unstable ones dashed. Bottom: the total energy of each branch
 relative to the symmetric branch's at the same phi_e, (E - E_sym) / E_sym, so that the crossing
-shows, and the turned cone's lies below it. The special values of results.json (first contact, phi_e^crit by stability and by
+shows, and the turned cone's lies below it (the n-fold cones, tens of per cent above, are drawn
+on top only, their least excess over the two-fold cone in the legend). The special values of results.json (first contact, phi_e^crit by stability and by
 energy) are marked with their phi_e. Needs matplotlib (Debian: python3-matplotlib).
 """
 import json
@@ -52,7 +53,9 @@ def main():
     for entry in results.get("compared_modes", []):
         rows = [r for r in read_rows(directory / entry["csv"], base, fail)
                 if r["phi_e"] >= (entry.get("phi_branch") or 0.0)]
-        others.append((f"{entry['mode']}-fold cone, without contact", rows))
+        above = entry.get("lowest_energy_above_two_fold")
+        note = f", at least {100 * above:.0f} % above" if isinstance(above, (int, float)) else ""
+        others.append((f"{entry['mode']}-fold cone, without contact{note}", rows))
     if not cone and not symmetric:
         fail(f"{directory} has neither cone/branch.csv nor symmetric/branch.csv samples")
     # The skewed branch is written as traced: down from the relaxed state, then up from it.
@@ -75,6 +78,9 @@ def main():
                 ("grown on from the skewed cone (winding)", wound, "tab:brown")]
     branches += [(name, rows, color) for (name, rows), color in
                  zip(others, ["tab:green", "tab:cyan", "tab:pink", "tab:olive"])]
+    # The other cones lie tens of per cent above the two-fold one: in the bottom panel they
+    # would hide the per-cent differences it is there for, so they are drawn on top only.
+    top_only = {name for name, _ in others}
     for name, rows, color in branches:
         labelled = False
         for first, last, stable in stability_runs([r["n_negative"] for r in rows]):
@@ -89,7 +95,7 @@ def main():
             points = [(r["phi_e"], value_at(reference, r["phi_e"], total_energy), total_energy(r))
                       for r in run]
             points = [(p, (e - s) / s) for p, s, e in points if s]
-            if points:
+            if points and name not in top_only:
                 bottom.plot([p for p, _ in points], [v for _, v in points], style, color=color,
                             linewidth=1.5)
     for jump in (results.get("wound") or {}).get("jumps", []):

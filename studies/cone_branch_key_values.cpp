@@ -51,9 +51,11 @@ void set_cone_branch_key_values(const BranchRecord& record, ConeBranchResults& r
   results.phi_crit_stability.reset();
   results.max_s4_defect_before_contact.reset();
   results.phi_last.reset();
+  results.phi_highest.reset();
   for (std::size_t i = 0; i < record.rows(); ++i) {
     const double phi = record.value(i, "phi_e");
     results.phi_last = phi;
+    results.phi_highest = std::max(results.phi_highest.value_or(phi), phi);
     if (!(phi >= kPhiCountedFrom)) continue;
     if (!results.phi_crit_stability && record.value(i, "n_negative") > 0)
       results.phi_crit_stability = phi;

@@ -19,7 +19,9 @@ namespace growshell {
 ///  - phi_crit_stability: the first row with phi_e >= 0.1 and n_negative > 0;
 ///  - max_s4_defect_before_contact: the largest finite s4_defect of the rows with
 ///    0.1 <= phi_e < phi_gap_h (every row from 0.1 on without a contact event);
-///  - phi_last: the last row's phi_e.
+///  - phi_last: the last row's phi_e;
+///  - phi_highest: the largest phi_e of the rows (where a branch that turns back at a fold
+///    turned).
 /// Values that the record does not have are reset to none. Throws std::out_of_range if the
 /// record lacks one of the columns.
 void set_cone_branch_key_values(const BranchRecord& record, ConeBranchResults& results);

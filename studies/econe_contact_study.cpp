@@ -718,7 +718,7 @@ void EconeContactRun::trace_compared_modes() {
     m.phi_max = cone.results.phi_max;
     m.eb_hat_max = cone.results.eb_hat_max;
     m.phi_first_contact = cone.results.phi_gap_h;
-    m.highest_phi = cone.results.phi_last;
+    m.highest_phi = cone.results.phi_highest;
     m.completed = cone.results.completed;
     m.end = cone.results.end;
     const double inf = std::numeric_limits<double>::infinity();
@@ -748,8 +748,10 @@ void EconeContactRun::trace_compared_modes() {
 /// wound-up cones. Every accepted state to DIR/wound (row, state), the shapes at
 /// study.wind_shapes_at and at the end as VTU.
 void EconeContactRun::wind_up() {
-  fs::remove_all(fs::path(dir_) / "wound");  // stale once the branches are traced again
-  if (!scene_.study.wind_to) return;
+  if (!scene_.study.wind_to) {
+    fs::remove_all(fs::path(dir_) / "wound");  // a stale winding of an earlier scene
+    return;
+  }
   const double target = *scene_.study.wind_to;
   // The start: the skewed cone's top, or the turned cone's (its core skews too, and where the
   // skewed search found no state it is the only cone that breaks S4): the higher of the two,
@@ -770,14 +772,36 @@ void EconeContactRun::wind_up() {
                       : top_turned_.phi > top_skewed_.phi;
   const TopSample& start = from_turned ? top_turned_ : top_skewed_;
   const auto started = std::chrono::steady_clock::now();
-  wound_ = std::make_unique<BranchRecord>(dir_ + "/wound", kColumns, BranchRecord::Start::Fresh);
   EconeWindUp w;
   w.start_branch = from_turned ? "turned" : "skewed";
   w.start_phi = start.phi;
   w.target = target;
+  // A resumed study continues the winding it recorded from the same start (the stages before
+  // are deterministic and give it again, to the bit) from its last committed state:
+  // grow_with_contact carries nothing from one step to the next but the state.
+  const std::string wound_dir = dir_ + "/wound";
+  const std::string start_file = wound_dir + "/start.state";
+  bool resumed = false;
+  if (existing_ == ExistingOutput::Resume && BranchRecord::exists(wound_dir) &&
+      fs::exists(start_file) && !BranchRecord::committed_last_state(wound_dir).empty()) {
+    const BranchSample recorded = load_branch_state(start_file, model_->dimension(), fingerprint_);
+    resumed = recorded.parameter == start.phi && recorded.x == start.x;
+  }
+  if (resumed) {
+    wound_ = std::make_unique<BranchRecord>(wound_dir, kColumns, BranchRecord::Start::Continue);
+  } else {
+    fs::remove_all(wound_dir);  // stale once the branches are traced again
+    wound_ = std::make_unique<BranchRecord>(wound_dir, kColumns, BranchRecord::Start::Fresh);
+    BranchSample s;
+    s.x = start.x;
+    s.parameter = start.phi;
+    s.tangent_state = Eigen::VectorXd::Zero(start.x.size());
+    save_branch_state(start_file, s, fingerprint_);
+  }
   say("# stage 8: the sheet grown on from the " + w.start_branch +
       " cone's highest stable state at phi_e = " + fixed(start.phi, 6) + " to " +
-      fixed(target, 6) + ", a minimum at every step");
+      fixed(target, 6) + ", a minimum at every step" +
+      (resumed ? " (resumed from its record, " + std::to_string(wound_->rows()) + " states)" : ""));
   ContactGrowthOptions growth;
   growth.contact = options_.contact;
   growth.contact.symmetric_subspace = nullptr;
@@ -806,38 +830,67 @@ void EconeContactRun::wind_up() {
     }
     record_sample("wound", *wound_, p.sample);
   };
+  // The pins of the start, also where the path resumes: the same pins give the same states.
+  const std::vector<Eigen::Index> pins =
+      rigid_pins_for_state(*model_, start.x, pinned_, growth.contact);
   Eigen::VectorXd x = start.x;
   double phi = start.phi;
-  const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, x, pinned_, growth.contact);
-  ContactGrowthResult g;
+  if (resumed) {
+    const BranchSample last = load_branch_state(wound_dir + "/" + wound_->last_state(),
+                                                model_->dimension(), fingerprint_);
+    x = last.x;
+    phi = last.parameter;
+    w.steps = static_cast<int>(wound_->rows());
+    w.highest_phi = phi;
+    for (const RecordedEvent& e : wound_->events())
+      if (e.kind == "jump") w.jumps.push_back(e.phi_e);
+  }
+  // The path ends a growth at its target to rounding (a sum of steps): within this it is there.
+  const double at_stop = 1e-9;
+  std::string message;
   for (const double stop : stops) {
-    if (!(stop > phi)) continue;
-    g = grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth, on_point);
-    w.steps += g.steps;
-    w.failed_steps += g.failed_steps;
-    if (g.steps > 0 || g.reached_target) {
-      x = g.last.sample.sample.x;
-      phi = g.last.sample.sample.parameter;
-      w.highest_phi = phi;
+    if (stop > phi + at_stop) {
+      const ContactGrowthResult g =
+          grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth, on_point);
+      w.steps += g.steps;
+      w.failed_steps += g.failed_steps;
+      if (g.steps > 0 || g.reached_target) {
+        x = g.last.sample.sample.x;
+        phi = g.last.sample.sample.parameter;
+        w.highest_phi = phi;
+      }
+      if (!g.reached_target) {
+        message = g.message;
+        break;
+      }
     }
-    if (!g.reached_target) break;
-    // The shape where the path stopped: the shell with its energy densities, and the contact
-    // proxy with its pair forces.
+    // The shape where the path stopped (on the stop, to rounding): the shell with
+    // its energy densities, and the contact proxy with its pair forces. A resumed path keeps
+    // the shapes its record committed.
     std::ostringstream name;
     name << "shape_phi" << std::setprecision(10) << stop;
-    const ContactBranchSample& s = g.last.sample;
-    wound_->add_snapshot(phi, name.str() + ".vtu", shell_snapshot(*model_, s.sample.x, phi, 2));
-    const ContactGapConstraints gaps(*proxy_, s.pairs, growth.contact.contact_distance,
-                                     model_->dimension(), growth.contact.gap);
-    wound_->write_surface(name.str() + "_contact.vtu",
-                          contact_snapshot(*proxy_, gaps, s.sample.x, s.forces));
-    wound_->commit();
-    w.shapes.push_back({phi, "wound/" + name.str() + ".vtu", "wound/" + name.str() + "_contact.vtu"});
-    say("# wound: wrote the shape at phi_e = " + fixed(phi, 6) + " (wound/" + name.str() +
-        ".vtu, _contact.vtu)");
+    const std::string shell = name.str() + ".vtu", contact = name.str() + "_contact.vtu";
+    const bool written = fs::exists(fs::path(wound_dir) / shell) &&
+                         fs::exists(fs::path(wound_dir) / contact);
+    if (stop < phi - at_stop && !written) continue;  // passed before this key asked for it
+    if (!written) {
+      BranchSample at;
+      at.x = x;
+      at.parameter = phi;
+      const ContactBranchSample s = describe_contact_sample(
+          *model_, *proxy_, at, near_penalty_pairs(*proxy_, x, growth.contact), growth.contact);
+      wound_->add_snapshot(phi, shell, shell_snapshot(*model_, x, phi, 2));
+      const ContactGapConstraints gaps(*proxy_, s.pairs, growth.contact.contact_distance,
+                                       model_->dimension(), growth.contact.gap);
+      wound_->write_surface(contact, contact_snapshot(*proxy_, gaps, x, s.forces));
+      wound_->commit();
+      say("# wound: wrote the shape at phi_e = " + fixed(phi, 6) + " (wound/" + shell +
+          ", _contact.vtu)");
+    }
+    w.shapes.push_back({stop, "wound/" + shell, "wound/" + contact});
   }
-  w.reached = g.reached_target;
-  w.end = w.reached ? "reached phi_e = " + fixed(target, 6) : g.message;
+  w.reached = message.empty() && phi >= target - at_stop;
+  w.end = w.reached ? "reached phi_e = " + fixed(target, 6) : message;
   w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   say("# stage 8: " + w.end + " (" + std::to_string(w.steps) + " steps, " +
       std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) + " jumps)");

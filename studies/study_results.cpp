@@ -40,6 +40,7 @@ std::string cone_branch_results_json(const ConeBranchResults& r) {
   j["max_s4_defect_before_contact"] = number_or_null(r.max_s4_defect_before_contact);
   j["phi_symmetry_lost"] = number_or_null(r.phi_symmetry_lost);
   j["phi_last"] = number_or_null(r.phi_last);
+  j["phi_highest"] = number_or_null(r.phi_highest);
   // Flat keys, so that a sweep's tables can show them.
   const auto orientation = [&r](double ConeBranchResults::Orientation::*field) {
     return r.orientation ? number_or_null((*r.orientation).*field) : Json(nullptr);

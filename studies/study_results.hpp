@@ -47,6 +47,8 @@ struct ConeBranchResults {
   std::optional<double> phi_symmetry_lost;
   /// The last sample of the cone.
   std::optional<double> phi_last;
+  /// The largest phi_e of the samples: the fold where a branch that turns back turned.
+  std::optional<double> phi_highest;
   /// The orientation check (study.orientation_check_at): at the saved state nearest that
   /// phi_e, the turned and relaxed state of lowest energy among study.orientation_check_turns
   /// (studies/pattern_orientation_check.hpp); unset without a check or if no relaxation
@@ -72,7 +74,7 @@ struct ConeBranchResults {
 /// study ("cone_branch"), thickness, mode, mesh {family, size_slope, elements, unknowns},
 /// phi_branch, phi_max, eb_hat_max, phi_gap_h, phi_kiss, phi_kiss_criterion
 /// ("midsurface_contact"), phi_crit_stability, max_s4_defect_before_contact,
-/// phi_symmetry_lost, phi_last, orientation_phi, orientation_turn_deg,
+/// phi_symmetry_lost, phi_last, phi_highest, orientation_phi, orientation_turn_deg,
 /// orientation_fold_angle_deg, orientation_energy_relative, orientation_s4_defect,
 /// orientation_chord_up, orientation_chord_down, orientation_energy_change_core,
 /// orientation_energy_change_outside, completed, end, branch_csv ("branch.csv"), events

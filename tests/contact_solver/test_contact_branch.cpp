@@ -13,7 +13,8 @@
 //  - trace_econe_branches: first contact, the symmetric branch's stability loss, a lower
 //    skewed state found and followed;
 //  - grow_with_contact: every state through contact a strict minimum (reduced Lagrangian count
-//    0), no pair closer than h - h/20;
+//    0), no pair closer than h - h/20; a path split at a step and grown on from its last
+//    state gives the same states (what a resumed winding relies on);
 //  - bad options are rejected naming the field.
 //
 // Scene: a coarse graded disc (8 rings, R = 1 m, h = 0.06 m, Y = 1e4 Pa, nu = 0.3) grown on
@@ -410,6 +411,46 @@ TEST(ContactGrowth, StepsThroughContactAreStableAndKeepTheThickness) {
     EXPECT_EQ(reduced.negative, 0) << "at phi_e = " << s.sample.parameter;
   }
   EXPECT_GT(touching, 0) << "no contact below phi_e = 6.4";
+}
+
+// grow_with_contact carries nothing from one step to the next but the state: a path stopped at
+// an intermediate excess angle and started again from its last state (what resuming a killed
+// winding does) gives the same states, through first contact, as the path grown in one go.
+TEST(ContactGrowth, APathSplitAtAnyStepGivesTheSameStates) {
+  GrownDisc& d = disc();
+  ContactGrowthOptions o;
+  o.contact = d.options();
+  o.contact.selection = NearPairSelection{false, false};  // as the econe_contact winding
+  o.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
+  o.newton.max_iterations = 200;
+  o.max_step = 0.2;
+  std::vector<ContactGrowthPoint> whole, split;
+  const auto keep = [](std::vector<ContactGrowthPoint>& into) {
+    return [&into](const ContactGrowthPoint& p) { into.push_back(p); };
+  };
+  const ContactGrowthResult r = grow_with_contact(d.model, d.proxy, d.start(), GrownDisc::kStart,
+                                                  6.4, d.pinned, o, keep(whole));
+  ASSERT_TRUE(r.reached_target) << r.message;
+  // Stopped after its step to 6.2 (contact starts near 6.14), then grown on from that state.
+  const ContactGrowthResult first = grow_with_contact(d.model, d.proxy, d.start(),
+                                                      GrownDisc::kStart, 6.2, d.pinned, o,
+                                                      keep(split));
+  ASSERT_TRUE(first.reached_target) << first.message;
+  const ContactGrowthResult rest =
+      grow_with_contact(d.model, d.proxy, first.last.sample.sample.x,
+                        first.last.sample.sample.parameter, 6.4, d.pinned, o, keep(split));
+  ASSERT_TRUE(rest.reached_target) << rest.message;
+  ASSERT_EQ(split.size(), whole.size());
+  int touching = 0;
+  for (std::size_t k = 0; k < whole.size(); ++k) {
+    const BranchSample& a = whole[k].sample.sample;
+    const BranchSample& b = split[k].sample.sample;
+    EXPECT_NEAR(a.parameter, b.parameter, 1e-12);  // 5 + 6 x 0.2 against 6.2
+    EXPECT_LE((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-10 * kH) << "at phi_e = " << a.parameter;
+    EXPECT_EQ(whole[k].sample.active_pairs, split[k].sample.active_pairs);
+    touching += whole[k].sample.active_pairs > 0;
+  }
+  EXPECT_GT(touching, 0) << "the split path never reached contact";
 }
 
 TEST(ContactBranch, BadOptionsAreRejectedByName) {

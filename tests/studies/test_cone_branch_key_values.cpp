@@ -46,6 +46,7 @@ TEST_F(ConeBranchKeyValues, FromTheRecordedEventsAndRows) {
   EXPECT_EQ(results.phi_crit_stability, 6.2);
   EXPECT_EQ(results.max_s4_defect_before_contact, 3e-7);
   EXPECT_EQ(results.phi_last, 6.3);
+  EXPECT_EQ(results.phi_highest, 6.3);
   EXPECT_EQ(results.thickness, 0.04);  // not the record's
 
   // The three-fold cone leaves the flat branch at its own branch point, after the two-fold
@@ -68,7 +69,7 @@ TEST_F(ConeBranchKeyValues, NullWhereTheRecordHasNothing) {
   EXPECT_FALSE(results.phi_branch || results.phi_max || results.eb_hat_max || results.phi_gap_h ||
                results.phi_kiss || results.phi_crit_stability ||
                results.max_s4_defect_before_contact || results.phi_symmetry_lost ||
-               results.phi_last);
+               results.phi_last || results.phi_highest);
   // Without a contact event every sample from 0.1 on counts for the defect; a cone other than
   // the two-fold one has none.
   r.append_row({0.2, 0, 4e-7});
@@ -81,6 +82,12 @@ TEST_F(ConeBranchKeyValues, NullWhereTheRecordHasNothing) {
   set_cone_branch_key_values(three, results);
   EXPECT_FALSE(results.max_s4_defect_before_contact.has_value());
   EXPECT_EQ(results.phi_last, 0.5);
+  // A branch that turns back at a fold: its last sample lies below the fold.
+  three.append_row({9.72, 3, kNan});
+  three.append_row({9.0, 4, kNan});
+  set_cone_branch_key_values(three, results);
+  EXPECT_EQ(results.phi_last, 9.0);
+  EXPECT_EQ(results.phi_highest, 9.72);
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ TEST(StudyResultsJson, HasEveryKeyInOrderWithItsValue) {
                                              "max_s4_defect_before_contact",
                                              "phi_symmetry_lost",
                                              "phi_last",
+                                             "phi_highest",
                                              "orientation_phi",
                                              "orientation_turn_deg",
                                              "orientation_fold_angle_deg",
