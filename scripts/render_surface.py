@@ -2,6 +2,7 @@
 """Render a growshell .vtu surface (triangles; appended raw binary or ASCII) to a PNG with matplotlib.
 
 usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 25 --azim -60]
+                         [--phi PHI_E]
                          [--views "ELEV,AZIM;ELEV,AZIM;..."] [--contact CONTACT.vtu] [--log]
                          [--alpha 0.85]
   --contact  a contact-proxy snapshot of the same state (trace_contact's *_contact_*.vtu):
@@ -9,6 +10,7 @@ usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 
              surface (also where a layer hides them: wound-up shapes touch between layers)
   --log      colour by log10 of the field (bending energy concentrates at the apex)
   --views    several views side by side (overrides --elev/--azim)
+  --phi      the state's excess angle (rad), for the title
   --alpha    opacity of the surface
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
 """
@@ -24,6 +26,13 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 
 TYPES = {"Float64": "<f8", "Int64": "<i8", "UInt8": "u1"}
+
+# The fields growshell writes, with their meaning and units (libshell/io/shell_snapshot.hpp).
+FIELD_LABELS = {
+    "bending_density": "bending energy density $U_b$ (1/m$^2$)",
+    "stretching_density": "stretching energy density $U_s$ (1)",
+    "element": "element index",
+}
 
 
 def read_array(data, name=None, components=None):
@@ -60,6 +69,8 @@ def main():
     parser.add_argument("--log", action="store_true")
     parser.add_argument("--views")
     parser.add_argument("--alpha", type=float, default=0.85)
+    parser.add_argument("--phi", type=float,
+                        help="the state's excess angle (rad), shown in the title")
     args = parser.parse_args()
     text = open(args.input, "rb").read()
     points = read_array(text, components=3).reshape(-1, 3)
@@ -71,7 +82,8 @@ def main():
         views = [(args.elev, args.azim)]
     if args.log:
         values = np.log10(np.maximum(values, values[values > 0].min() if (values > 0).any() else 1e-300))
-    colors = plt.cm.viridis((values - values.min()) / max(np.ptp(values), 1e-300))
+    norm = matplotlib.colors.Normalize(vmin=values.min(), vmax=values.max())
+    colors = plt.cm.viridis(norm(values))
     touching = None
     if args.contact:
         ctext = open(args.contact, "rb").read()
@@ -97,9 +109,15 @@ def main():
         for axis, c in zip("xyz", centre):
             getattr(ax, "set_%slim" % axis)(c - half, c + half)
         ax.view_init(elev=elev, azim=azim)
-        ax.set_title("%s (%s%s), elev %g azim %g" % (args.input.split("/")[-1],
-                                                      "log10 " if args.log else "", args.field,
-                                                      elev, azim))
+        for axis in "xyz":
+            getattr(ax, "set_%slabel" % axis)("%s (m)" % axis)
+        phi = "" if args.phi is None else r"$\phi_e$ = %.4g rad, " % args.phi
+        ax.set_title("%s\n%sview elev %g°, azim %g°" % (args.input.split("/")[-1], phi, elev, azim),
+                     fontsize=10)
+    name = FIELD_LABELS.get(args.field, args.field)
+    bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap="viridis"), ax=fig.axes,
+                       shrink=0.7, pad=0.02)
+    bar.set_label(("log10 of " if args.log else "") + name)
     fig.savefig(args.output, dpi=90)
 
 

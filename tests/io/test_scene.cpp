@@ -25,6 +25,15 @@
 namespace growshell {
 namespace {
 
+/// The message with which parse_scene refuses `text`, empty if it takes it.
+std::string refusal(const std::string& text) {
+  return test_support::error_of([&text] { parse_scene(text, "t"); });
+}
+
+bool mentions(const std::string& message, const std::string& part) {
+  return message.find(part) != std::string::npos;
+}
+
 namespace fs = std::filesystem;
 
 /// The repository root, found from this file's (absolute) path: tests/io/test_scene.cpp.
@@ -857,27 +866,22 @@ TEST(Scene, WindToIsTheEconeStudysAbovePhiMaxWithItsShapesBetween) {
   EXPECT_FALSE(default_scene().study.wind_to.has_value());
   EXPECT_FALSE(parse_scene(R"({"study": {"kind": "econe_contact", "wind_to": null}})", "t")
                    .study.wind_to.has_value());
-  using test_support::error_of;
-  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
-  const auto has = [](const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-  };
-  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
-                                     "study": {"kind": "econe_contact", "wind_to": 7.0}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"continuation": {"phi_max": 7.3},
+                                     "study": {"kind": "econe_contact", "wind_to": 7.0}})"),
                   "study.wind_to = 7 must be finite and above continuation.phi_max = 7.3"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "wind_to": "auto"}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"kind": "econe_contact", "wind_to": "auto"}})"),
                   "study.wind_to must be a number or null"));
-  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
+  EXPECT_TRUE(mentions(refusal(R"({"continuation": {"phi_max": 7.3},
                                      "study": {"kind": "econe_contact", "wind_to": 9,
-                                               "wind_shapes_at": [8, 9.5]}})")),
+                                               "wind_shapes_at": [8, 9.5]}})"),
                   "study.wind_shapes_at[1] = 9.5 must lie in"));
-  EXPECT_TRUE(has(error_of(parse(R"({"continuation": {"phi_max": 7.3},
+  EXPECT_TRUE(mentions(refusal(R"({"continuation": {"phi_max": 7.3},
                                      "study": {"kind": "econe_contact", "wind_to": 9,
-                                               "wind_shapes_at": [8, 8]}})")),
+                                               "wind_shapes_at": [8, 8]}})"),
                   "study.wind_shapes_at[1] = 8 is listed twice"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "wind_shapes_at": [8]}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"kind": "econe_contact", "wind_shapes_at": [8]}})"),
                   "study.wind_to is null"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"wind_to": 9}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"wind_to": 9}})"),
                   "read only by the econe_contact study"));
 }
 
@@ -888,18 +892,13 @@ TEST(Scene, CompareModesAreTheEconeStudysModesAboveTwo) {
   EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.compare_modes,
             s.study.compare_modes);
   EXPECT_TRUE(default_scene().study.compare_modes.empty());
-  using test_support::error_of;
-  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
-  const auto has = [](const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-  };
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [2]}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"kind": "econe_contact", "compare_modes": [2]}})"),
                   "study.compare_modes[0] = 2 must be at least 3"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [3, 3]}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"kind": "econe_contact", "compare_modes": [3, 3]}})"),
                   "study.compare_modes[1] = 3 is listed twice"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"kind": "econe_contact", "compare_modes": [3.5]}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"kind": "econe_contact", "compare_modes": [3.5]}})"),
                   "study.compare_modes[0] must be an integer"));
-  EXPECT_TRUE(has(error_of(parse(R"({"study": {"compare_modes": [3]}})")),
+  EXPECT_TRUE(mentions(refusal(R"({"study": {"compare_modes": [3]}})"),
                   "read only by the econe_contact study"));
 }
 

@@ -54,7 +54,7 @@ if(NOT vtu MATCHES "format=\"appended\" offset=\"0\"")
 endif()
 if(no_matplotlib EQUAL 0)
   execute_process(COMMAND /usr/bin/python3 "${SOURCE_DIR}/scripts/render_surface.py"
-                          "${run}/last.vtu" "${OUT}/last.png"
+                          "${run}/last.vtu" "${OUT}/last.png" --log --phi 0.3
                   RESULT_VARIABLE rc OUTPUT_VARIABLE rlog ERROR_VARIABLE rerr)
   if(NOT rc EQUAL 0 OR NOT EXISTS "${OUT}/last.png")
     message(FATAL_ERROR "render_surface.py could not draw last.vtu (${rc}):\n${rlog}\n${rerr}")
