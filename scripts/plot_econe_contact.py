@@ -48,7 +48,8 @@ def main():
     symmetric = read_rows(directory / "symmetric" / "branch.csv", contact, fail)
     skewed = read_rows(directory / "skewed" / "branch.csv", contact, fail)
     turned = read_rows(directory / "turned" / "branch.csv", contact, fail)
-    wound = read_rows(directory / "wound" / "branch.csv", contact, fail)
+    wound_csv = results.get("wound_csv")
+    wound = read_rows(directory / wound_csv, contact, fail) if wound_csv else []
     others = []
     for entry in results.get("compared_modes", []):
         rows = [r for r in read_rows(directory / entry["csv"], base, fail)
@@ -75,9 +76,11 @@ def main():
                 ("symmetric, with contact", symmetric, "tab:blue"),
                 ("skewed, with contact", skewed, "tab:red"),
                 ("turned against the mesh, with contact", turned, "tab:orange"),
-                ("grown on from the skewed cone (winding)", wound, "tab:brown")]
-    branches += [(name, rows, color) for (name, rows), color in
-                 zip(others, ["tab:green", "tab:cyan", "tab:pink", "tab:olive"])]
+                ("grown on from the "
+                 + (results.get("wound") or {}).get("start_branch", "skewed")
+                 + " cone (winding)", wound, "tab:brown")]
+    palette = ["tab:green", "tab:cyan", "tab:pink", "tab:olive"]
+    branches += [(name, rows, palette[k % len(palette)]) for k, (name, rows) in enumerate(others)]
     # The other cones lie tens of per cent above the two-fold one: in the bottom panel they
     # would hide the per-cent differences it is there for, so they are drawn on top only.
     top_only = {name for name, _ in others}

@@ -36,8 +36,8 @@ const RecordedEvent* largest_eb_max(const BranchRecord& record) {
 }  // namespace
 
 void set_cone_branch_key_values(const BranchRecord& record, ConeBranchResults& results) {
-  // The branch point the cone left from; a record without that event (written before it
-  // existed, always of the two-fold cone) has it as its first branch point.
+  // The branch point the cone left from; a record written before that event existed has the
+  // first branch point instead (right for the two-fold cone, the first mode).
   const RecordedEvent* entry = first_event(record, "cone_entry");
   results.phi_branch = phi_of(entry ? entry : first_event(record, "branch_point", "flat"));
   const RecordedEvent* eb = largest_eb_max(record);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -60,6 +61,22 @@ Scene compared_mode_scene(const Scene& scene, int n) {
   mode.study.orientation_check_at.reset();  // the two-fold cone's S4 check
   mode.output.directory = (fs::path(scene.output.directory) / ("cone_n" + std::to_string(n))).string();
   return mode;
+}
+
+/// The dofs listed in `path` (one per line, each in [0, n)): the winding's pins.txt. Throws
+/// std::runtime_error naming the file if it is missing or holds anything else.
+std::vector<Eigen::Index> read_pins(const std::string& path, Eigen::Index n) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot be read (the winding's pins)");
+  std::vector<Eigen::Index> pins;
+  long long dof = 0;
+  while (in >> dof) {
+    if (dof < 0 || dof >= n) throw std::runtime_error(path + ": dof " + std::to_string(dof) +
+                                                      " is not in [0, " + std::to_string(n) + ")");
+    pins.push_back(static_cast<Eigen::Index>(dof));
+  }
+  if (!in.eof() || pins.empty()) throw std::runtime_error(path + ": not a list of dofs");
+  return pins;
 }
 
 /// Whether an S4 defect (relative to R) says the state is not S4-symmetric: above the scene's
@@ -721,6 +738,11 @@ void EconeContactRun::trace_compared_modes() {
     m.highest_phi = cone.results.phi_highest;
     m.completed = cone.results.completed;
     m.end = cone.results.end;
+    if (!m.completed) {
+      const std::string why = "the " + std::to_string(n) + "-fold cone: " + m.end;
+      results_.end = results_.completed ? why : results_.end + "; " + why;
+      results_.completed = false;
+    }
     const double inf = std::numeric_limits<double>::infinity();
     for (const BranchEnergySample& s :
          saved_energies(mode_scene.output.directory, m.phi_branch.value_or(inf), inf)) {
@@ -758,6 +780,7 @@ void EconeContactRun::wind_up() {
   // and the lower in energy where both reach the same phi_e (within a step).
   const bool skewed = top_skewed_.x.size() > 0, turned = top_turned_.x.size() > 0;
   if (!skewed && !turned) {
+    fs::remove_all(fs::path(dir_) / "wound");  // a stale winding of an earlier run
     const std::string why =
         "no winding: neither the skewed nor the turned branch has a stable sample that breaks S4";
     say("# stage 8: " + why);
@@ -765,10 +788,19 @@ void EconeContactRun::wind_up() {
     results_.completed = false;
     return;
   }
+  // Energies at two tops a little apart in phi_e are compared each against the symmetric
+  // branch at its own phi_e (E rises with phi_e by more than the two cones differ).
+  std::vector<BranchStateSample> symmetric = symmetric_samples();
+  std::sort(symmetric.begin(), symmetric.end(),
+            [](const BranchStateSample& a, const BranchStateSample& b) { return a.phi_e < b.phi_e; });
+  const auto relative = [&symmetric](const TopSample& top) {
+    const std::optional<double> reference = branch_energy_at(symmetric, top.phi);
+    return reference && *reference > 0.0 ? top.energy / *reference : top.energy;
+  };
   bool from_turned = !skewed;
   if (skewed && turned)
     from_turned = std::abs(top_turned_.phi - top_skewed_.phi) <= scene_.study.contact_max_step
-                      ? top_turned_.energy < top_skewed_.energy
+                      ? relative(top_turned_) < relative(top_skewed_)
                       : top_turned_.phi > top_skewed_.phi;
   const TopSample& start = from_turned ? top_turned_ : top_skewed_;
   const auto started = std::chrono::steady_clock::now();
@@ -781,11 +813,15 @@ void EconeContactRun::wind_up() {
   // grow_with_contact carries nothing from one step to the next but the state.
   const std::string wound_dir = dir_ + "/wound";
   const std::string start_file = wound_dir + "/start.state";
+  const std::string pins_file = wound_dir + "/pins.txt";
   bool resumed = false;
   if (existing_ == ExistingOutput::Resume && BranchRecord::exists(wound_dir) &&
-      fs::exists(start_file) && !BranchRecord::committed_last_state(wound_dir).empty()) {
+      fs::exists(start_file) && fs::exists(pins_file) &&
+      !BranchRecord::committed_last_state(wound_dir).empty()) {
     const BranchSample recorded = load_branch_state(start_file, model_->dimension(), fingerprint_);
     resumed = recorded.parameter == start.phi && recorded.x == start.x;
+    if (!resumed)
+      say("# stage 8: the recorded winding started from another state; it is traced afresh");
   }
   if (resumed) {
     wound_ = std::make_unique<BranchRecord>(wound_dir, kColumns, BranchRecord::Start::Continue);
@@ -819,6 +855,11 @@ void EconeContactRun::wind_up() {
   std::sort(stops.begin(), stops.end());
   stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
   const auto on_point = [&](const ContactGrowthPoint& p) {
+    // The pins the path goes on from, before the state is committed: a resumed path takes the
+    // pins of its last committed state or of the one after it, which give the same next pins.
+    std::string pins_text;
+    for (const Eigen::Index dof : p.pins) pins_text += std::to_string(dof) + "\n";
+    write_file_atomically(pins_file, pins_text);
     if (p.jumped) {
       w.jumps.push_back(p.sample.sample.parameter);
       std::ostringstream j;
@@ -830,16 +871,20 @@ void EconeContactRun::wind_up() {
     }
     record_sample("wound", *wound_, p.sample);
   };
-  // The pins of the start, also where the path resumes: the same pins give the same states.
-  const std::vector<Eigen::Index> pins =
-      rigid_pins_for_state(*model_, start.x, pinned_, growth.contact);
+  // The path carries its state, step and pins from one point to the next, across the stops and
+  // across a resume (the last committed state with its next step, and pins.txt).
+  std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, start.x, pinned_, growth.contact);
   Eigen::VectorXd x = start.x;
   double phi = start.phi;
+  w.highest_phi = phi;
   if (resumed) {
     const BranchSample last = load_branch_state(wound_dir + "/" + wound_->last_state(),
                                                 model_->dimension(), fingerprint_);
     x = last.x;
     phi = last.parameter;
+    if (last.next_step > 0.0 && last.next_step <= growth.max_step)
+      growth.initial_step = last.next_step;
+    pins = read_pins(pins_file, model_->dimension());
     w.steps = static_cast<int>(wound_->rows());
     w.highest_phi = phi;
     for (const RecordedEvent& e : wound_->events())
@@ -854,9 +899,11 @@ void EconeContactRun::wind_up() {
           grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth, on_point);
       w.steps += g.steps;
       w.failed_steps += g.failed_steps;
-      if (g.steps > 0 || g.reached_target) {
+      if (g.steps > 0) {
         x = g.last.sample.sample.x;
         phi = g.last.sample.sample.parameter;
+        pins = g.last.pins;
+        growth.initial_step = g.last.sample.sample.next_step;
         w.highest_phi = phi;
       }
       if (!g.reached_target) {

@@ -146,7 +146,7 @@ struct EconeComparedMode {
   std::string directory;  ///< its cone_branch study, relative to DIR ("cone_n3")
   std::optional<double> phi_branch, phi_max, eb_hat_max;
   std::optional<double> phi_first_contact;  ///< its first gap = contact distance, if reached
-  std::optional<double> highest_phi;        ///< its last sample
+  std::optional<double> highest_phi;        ///< its highest sample (phi_highest)
   /// The smallest (E_n - E_2) / E_2 over its samples where the two-fold cone was traced
   /// (E = E_s + E_b, + P on the branch with contact), and where: above 0 if it lies above.
   std::optional<double> lowest_energy_above_two_fold, lowest_energy_above_two_fold_phi;

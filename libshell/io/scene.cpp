@@ -506,7 +506,6 @@ Scene default_scene() { return Scene{}; }
 
 namespace {
 
-/// The series keys: complete for study.kind series, absent for every other study.
 /// study.wind_to and study.wind_shapes_at (econe_contact only, beyond continuation.phi_max),
 /// and study.compare_modes (econe_contact only, modes 3 and up).
 void validate_winding(const Scene& scene) {
@@ -546,6 +545,7 @@ void validate_winding(const Scene& scene) {
   }
 }
 
+/// The series keys: complete for study.kind series, absent for every other study.
 void validate_series(const SceneStudy& st) {
   if (st.kind != StudyKind::Series) {
     if (!st.series_key.empty() || !st.series_values.empty() || !st.series_report.empty() ||

@@ -283,8 +283,8 @@ struct SceneStudy {
   /// with the penalty's (studies/hard_contact_check.hpp): the contact solver of record at the
   /// reported points, and gamma from its contact forces. Empty by default.
   std::vector<double> hard_contact_at;
-  /// econe_contact only: beyond the skewed branch, the sheet is grown on from the skewed
-  /// cone's highest stable state up to this excess angle (rad, finite, above
+  /// econe_contact only: beyond the branches, the sheet is grown on from the highest stable
+  /// state that breaks S4 (of the skewed or the turned cone) up to this excess angle (rad, finite, above
   /// continuation.phi_max) by minimisation at every step, so that it drops onto whatever stable
   /// state follows where a branch ends: the wound-up cones (physics.md, item 5). Unset (null,
   /// the default): no winding.

@@ -95,6 +95,8 @@ ContactGrowthResult grow_with_contact(
     const std::function<void(const ContactGrowthPoint&)>& on_point) {
   if (!(options.max_step > 0.0 && options.min_step > 0.0 && options.min_step <= options.max_step))
     throw std::invalid_argument("ContactGrowthOptions: need 0 < min_step <= max_step");
+  if (!(options.initial_step >= 0.0 && options.initial_step <= options.max_step))
+    throw std::invalid_argument("ContactGrowthOptions: need 0 <= initial_step <= max_step");
   if (options.max_saddle_escapes < 0)
     throw std::invalid_argument("ContactGrowthOptions::max_saddle_escapes must be >= 0");
   const ContactBranchOptions& o = options.contact;
@@ -102,7 +104,7 @@ ContactGrowthResult grow_with_contact(
   ContactGrowthResult out;
   Eigen::VectorXd x = x0;
   double phi = phi0;
-  double step = options.max_step;
+  double step = options.initial_step > 0.0 ? options.initial_step : options.max_step;
   out.last.sample.sample.x = x0;
   out.last.sample.sample.parameter = phi0;
   std::vector<Eigen::Index> pins = fixed_dofs;
@@ -152,13 +154,15 @@ ContactGrowthResult grow_with_contact(
     s.x = x;
     s.tangent_state = Eigen::VectorXd::Zero(x.size());
     s.tangent_parameter = direction;
+    step = std::min(options.max_step, 1.5 * step);
+    s.next_step = step;
     ContactGrowthPoint point;
     point.sample = describe_contact_sample(model, proxy, s, near_penalty_pairs(proxy, x, o), o);
+    point.pins = pins;
     point.saddle_escapes = escapes;
     point.jumped = escapes > 0;
     out.last = point;
     if (on_point) on_point(point);
-    step = std::min(options.max_step, 1.5 * step);
   }
   out.reached_target = true;
   return out;

@@ -72,6 +72,10 @@ struct ContactGrowthOptions {
   ContactBranchOptions contact;  ///< distances, stiffness and pair selection (step fields unused)
   NewtonOptions newton;          ///< the minimisation of every step
   double max_step = 0.05;        ///< largest step in phi_e (rad)
+  /// The first step tried (0: max_step). A path resumed from one of its points passes that
+  /// point's sample.sample.next_step here, and its pins as fixed_dofs, to go on exactly as the
+  /// path would have.
+  double initial_step = 0.0;
   double min_step = 1e-3;        ///< a step failing below this ends the path
   /// Pushes along the lowest mode (h/2 at its largest entry) before a saddle counts as a
   /// failed step.
@@ -80,7 +84,11 @@ struct ContactGrowthOptions {
 
 /// One accepted (stable) state of the path.
 struct ContactGrowthPoint {
-  ContactBranchSample sample;  ///< state, energies, forces, pairs (negative count 0)
+  /// State, energies, forces, pairs (negative count 0); sample.next_step is the step the path
+  /// tries next.
+  ContactBranchSample sample;
+  /// The rigid-motion pins this point was found with (the path's next step starts from them).
+  std::vector<Eigen::Index> pins;
   int saddle_escapes = 0;
   /// The minimisation from the previous state ended on a saddle and had to be pushed off it:
   /// the previous stable branch ended, and the path jumped to another stable state.
@@ -98,7 +106,9 @@ struct ContactGrowthResult {
 
 /// Grows from the equilibrium (or any state) x0 at phi0 towards phi_target in natural steps,
 /// accepting only strict minima of shell + penalty; each accepted point goes to on_point as
-/// soon as it is found. Throws
+/// soon as it is found. The path carries from one step to the next only the state, the step
+/// and the pins, which each point reports: started again from a point with its step
+/// (options.initial_step) and pins (fixed_dofs), it goes on as it would have. Throws
 /// std::invalid_argument for bad options.
 ContactGrowthResult grow_with_contact(
     const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,

@@ -413,9 +413,10 @@ TEST(ContactGrowth, StepsThroughContactAreStableAndKeepTheThickness) {
   EXPECT_GT(touching, 0) << "no contact below phi_e = 6.4";
 }
 
-// grow_with_contact carries nothing from one step to the next but the state: a path stopped at
-// an intermediate excess angle and started again from its last state (what resuming a killed
-// winding does) gives the same states, through first contact, as the path grown in one go.
+// grow_with_contact carries from one step to the next only the state, the step and the pins,
+// which each point reports: a path stopped at an intermediate excess angle and started again
+// from its last point (what resuming a killed winding does) gives the same states, through
+// first contact, as the path grown in one go.
 TEST(ContactGrowth, APathSplitAtAnyStepGivesTheSameStates) {
   GrownDisc& d = disc();
   ContactGrowthOptions o;
@@ -436,9 +437,16 @@ TEST(ContactGrowth, APathSplitAtAnyStepGivesTheSameStates) {
                                                       GrownDisc::kStart, 6.2, d.pinned, o,
                                                       keep(split));
   ASSERT_TRUE(first.reached_target) << first.message;
+  // Started again as a resumed winding is: from the point's state, step and pins.
+  ContactGrowthOptions again = o;
+  again.initial_step = first.last.sample.sample.next_step;
+  EXPECT_GT(again.initial_step, 0.0);
+  EXPECT_LE(again.initial_step, o.max_step);
+  EXPECT_FALSE(first.last.pins.empty());
   const ContactGrowthResult rest =
       grow_with_contact(d.model, d.proxy, first.last.sample.sample.x,
-                        first.last.sample.sample.parameter, 6.4, d.pinned, o, keep(split));
+                        first.last.sample.sample.parameter, 6.4, first.last.pins, again,
+                        keep(split));
   ASSERT_TRUE(rest.reached_target) << rest.message;
   ASSERT_EQ(split.size(), whole.size());
   int touching = 0;
@@ -451,6 +459,31 @@ TEST(ContactGrowth, APathSplitAtAnyStepGivesTheSameStates) {
     touching += whole[k].sample.active_pairs > 0;
   }
   EXPECT_GT(touching, 0) << "the split path never reached contact";
+}
+
+TEST(ContactGrowth, BadOptionsAreRejectedByName) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.model.reference_positions();
+  const auto message = [&](const ContactGrowthOptions& o) {
+    try {
+      grow_with_contact(d.model, d.proxy, x, 0.0, 0.1, d.pinned, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  ContactGrowthOptions o;
+  o.contact = d.options();
+  o.initial_step = 2.0 * o.max_step;
+  EXPECT_NE(message(o).find("initial_step"), std::string::npos);
+  o.initial_step = -1.0;
+  EXPECT_NE(message(o).find("initial_step"), std::string::npos);
+  o.initial_step = 0.0;
+  o.min_step = 2.0 * o.max_step;
+  EXPECT_NE(message(o).find("min_step"), std::string::npos);
+  o.min_step = 1e-3;
+  o.max_saddle_escapes = -1;
+  EXPECT_NE(message(o).find("max_saddle_escapes"), std::string::npos);
 }
 
 TEST(ContactBranch, BadOptionsAreRejectedByName) {

@@ -236,16 +236,20 @@ endif()
 if(NOT EXISTS "${OUT}/run/econe_contact.png")
   message(WARNING "no econe_contact.png (matplotlib missing?)")
 endif()
-# Stage 7: the winding from the skewed cone's top.
+# Stage 8: the winding from the top of the turned cone.
 string(JSON wound GET "${results}" wound)
 foreach(key reached start_branch start_phi highest_phi failed_steps)
   string(JSON wound_${key} GET "${wound}" ${key})
 endforeach()
 string(JSON wound_shapes LENGTH "${wound}" shapes)
-if(NOT wound_reached OR NOT wound_start_branch STREQUAL "turned" OR wound_start_phi LESS 7.29 OR wound_highest_phi LESS 7.4499 OR
-   NOT wound_shapes EQUAL 2)
-  message(FATAL_ERROR "the winding did not run from the skewed cone's top to 7.45 with its two "
-                      "shapes:\n${wound}")
+string(JSON shape_0_phi GET "${wound}" shapes 0 phi_e)
+string(JSON shape_1_phi GET "${wound}" shapes 1 phi_e)
+if(NOT wound_reached OR NOT wound_start_branch STREQUAL "turned" OR
+   NOT wound_start_phi GREATER_EQUAL 7.29 OR NOT wound_highest_phi GREATER_EQUAL 7.4499 OR
+   NOT wound_failed_steps EQUAL 0 OR NOT wound_shapes EQUAL 2 OR NOT shape_0_phi EQUAL 7.4 OR
+   NOT shape_1_phi EQUAL 7.45)
+  message(FATAL_ERROR "the winding did not run from the turned cone's top to 7.45 without a "
+                      "failed step, with its shapes at 7.4 and 7.45:\n${wound}")
 endif()
 foreach(k 0 1)
   string(JSON shell GET "${wound}" shapes ${k} shell)
@@ -263,11 +267,11 @@ endforeach()
 # drop onto another state moves it by 0.1 or more), the skew growing.
 set(check_wound [=[
 import csv, sys
-skewed = list(csv.DictReader(open(sys.argv[1])))
+start = list(csv.DictReader(open(sys.argv[1])))
 wound = list(csv.DictReader(open(sys.argv[2])))
 if len(wound) < 3:
     sys.exit(f"the winding has {len(wound)} rows, not at least 3")
-previous = skewed[-1]
+previous = start[-1]
 if abs(float(previous["phi_e"]) - float(sys.argv[3])) > 1e-9:
     sys.exit(f"the winding starts at {sys.argv[3]}, not at its branch's top {previous['phi_e']}")
 for row in wound:
@@ -292,7 +296,7 @@ endforeach()
 execute_process(COMMAND /usr/bin/python3 -c
                         "import sys; b = float(sys.argv[1]); sys.exit(0 if abs(b / (21.1087 * 0.04**2) - 1) < 0.05 else 1)"
                         ${three_phi_branch} RESULT_VARIABLE off)
-if(NOT three_mode EQUAL 3 OR NOT off EQUAL 0 OR three_highest_phi LESS 7.29 OR
+if(NOT three_mode EQUAL 3 OR NOT off EQUAL 0 OR NOT three_highest_phi GREATER_EQUAL 7.29 OR
    NOT three_lowest_energy_above_two_fold GREATER 0 OR NOT EXISTS "${OUT}/run/${three_csv}")
   message(FATAL_ERROR "the three-fold cone: branch point ${three_phi_branch} (c3 h^2 = "
                       "0.03377), to ${three_highest_phi}, at least "

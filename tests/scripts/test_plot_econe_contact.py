@@ -77,7 +77,8 @@ def main():
                    [(7.35, 0.735, 0), (7.4, 0.74, 0), (7.45, 0.76, 0)])
             branch(os.path.join(d, "cone_n3", "branch.csv"),
                    [(0.0, 0.0, 0), (0.034, 0.0, 0), (3.0, 0.9, 2), (7.3, 0.8, 2)], contact=False)
-            results["wound"] = {"jumps": [7.4]}
+            results["wound"] = {"jumps": [7.4], "start_branch": "turned"}
+            results["wound_csv"] = "wound/branch.csv"
             results["compared_modes"] = [{"mode": 3, "csv": "cone_n3/branch.csv",
                                           "phi_branch": 0.034}]
             with open(os.path.join(d, "results.json"), "w") as f:
