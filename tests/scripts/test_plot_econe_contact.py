@@ -26,6 +26,16 @@ def branch(path, rows, contact=True):
                 f.write(f"{phi},{energy / 2},{energy / 2},3.0,{negative}\n")
 
 
+def redraw(check, d, results, what):
+    """Writes `results` as d/results.json, removes the figure, draws it again and checks it."""
+    with open(os.path.join(d, "results.json"), "w") as f:
+        json.dump(results, f)
+    figure = os.path.join(d, "econe_contact.png")
+    os.remove(figure)
+    drawn = run_script("plot_econe_contact.py", d)
+    check(drawn.returncode == 0 and os.path.isfile(figure), f"{what}: {drawn.stderr!r}")
+
+
 def main():
     check = Checks()
     with tempfile.TemporaryDirectory() as d:
@@ -66,12 +76,7 @@ def main():
             branch(os.path.join(d, "turned", "branch.csv"),
                    [(6.5, 0.734, 0), (5.2, 0.79, 0), (6.9, 0.731, 0), (7.3, 0.730, 0)])
             results["phi_crit_energy_reference"] = "turned"
-            with open(os.path.join(d, "results.json"), "w") as f:
-                json.dump(results, f)
-            os.remove(figure)
-            with_turned = run_script("plot_econe_contact.py", d)
-            check(with_turned.returncode == 0 and os.path.isfile(figure),
-                  f"the figure with the turned branch is drawn: {with_turned.stderr!r}")
+            redraw(check, d, results, "the figure with the turned branch is drawn")
             # With the winding (its jumps marked) and a three-fold cone of compare_modes.
             branch(os.path.join(d, "wound", "branch.csv"),
                    [(7.35, 0.735, 0), (7.4, 0.74, 0), (7.45, 0.76, 0)])
@@ -81,12 +86,7 @@ def main():
             results["wound_csv"] = "wound/branch.csv"
             results["compared_modes"] = [{"mode": 3, "csv": "cone_n3/branch.csv",
                                           "phi_branch": 0.034}]
-            with open(os.path.join(d, "results.json"), "w") as f:
-                json.dump(results, f)
-            os.remove(figure)
-            with_more = run_script("plot_econe_contact.py", d)
-            check(with_more.returncode == 0 and os.path.isfile(figure),
-                  f"the figure with the winding and the n = 3 cone is drawn: {with_more.stderr!r}")
+            redraw(check, d, results, "the figure with the winding and the n = 3 cone is drawn")
             # A compared mode whose record lacks a column is refused by name.
             with open(os.path.join(d, "cone_n3", "branch.csv"), "w") as f:
                 f.write("phi_e,E_stretch\n1,2\n")
