@@ -122,6 +122,13 @@ class EconeContactRun {
   /// The symmetric branch's samples (the contact-free cone ahead of the trace with contact,
   /// then the traced branch), and the skewed cone's samples that break S4.
   std::vector<BranchStateSample> symmetric_samples() const;
+  /// The same, by increasing phi_e (for branch_energy_at).
+  std::vector<BranchStateSample> symmetric_samples_by_phi() const;
+  /// Leaves the study incomplete, `why` added to results.json's end.
+  void mark_incomplete(const std::string& why) {
+    results_.end = results_.completed ? why : results_.end + "; " + why;
+    results_.completed = false;
+  }
   std::vector<BranchStateSample> skewed_samples() const;
   /// The phi_e of the skewed branch's special points (where its stability changes).
   std::vector<double> skewed_special_points() const;
@@ -461,6 +468,14 @@ std::vector<BranchStateSample> EconeContactRun::symmetric_samples() const {
   return out;
 }
 
+std::vector<BranchStateSample> EconeContactRun::symmetric_samples_by_phi() const {
+  std::vector<BranchStateSample> out = symmetric_samples();
+  std::sort(out.begin(), out.end(), [](const BranchStateSample& a, const BranchStateSample& b) {
+    return a.phi_e < b.phi_e;
+  });
+  return out;
+}
+
 std::vector<BranchStateSample> EconeContactRun::skewed_samples() const {
   const double threshold = scene_.study.symmetry_threshold;
   return record_samples(*skewed_, [threshold](double d) { return breaks_s4(d, threshold); });
@@ -607,8 +622,7 @@ void EconeContactRun::trace_turned() {
   for (const auto& [name, trace] : {std::pair{"downwards", &down}, std::pair{"upwards", &up}}) {
     if (trace->reached_bound) continue;
     const std::string why = std::string("turned branch ") + name + ": " + trace->message;
-    results_.end = results_.completed ? why : results_.end + "; " + why;
-    results_.completed = false;
+    mark_incomplete(why);
   }
 
   // Its samples in the order traced (row k of the record) and by phi_e, against the symmetric
@@ -620,8 +634,7 @@ void EconeContactRun::trace_turned() {
       record_samples(*turned_, [](double) { return true; });
   std::vector<BranchStateSample> turned = rows;
   std::sort(turned.begin(), turned.end(), by_phi);
-  std::vector<BranchStateSample> symmetric = symmetric_samples();
-  std::sort(symmetric.begin(), symmetric.end(), by_phi);
+  const std::vector<BranchStateSample> symmetric = symmetric_samples_by_phi();
   for (const BranchStateSample& s : turned) {
     const std::optional<double> reference = branch_energy_at(symmetric, s.phi_e);
     if (!reference) continue;
@@ -711,11 +724,7 @@ void EconeContactRun::check_hard_contact_points() {
 /// (a cone_branch study in DIR/cone_nN, resumed like stage 1), and its energy set against the
 /// two-fold cone's at the same phi_e.
 void EconeContactRun::trace_compared_modes() {
-  std::vector<BranchStateSample> two_fold = symmetric_samples();
-  const auto by_phi = [](const BranchStateSample& a, const BranchStateSample& b) {
-    return a.phi_e < b.phi_e;
-  };
-  std::sort(two_fold.begin(), two_fold.end(), by_phi);
+  const std::vector<BranchStateSample> two_fold = symmetric_samples_by_phi();
   for (const int n : scene_.study.compare_modes) {
     const Scene mode_scene = compared_mode_scene(scene_, n);
     const std::string name = fs::path(mode_scene.output.directory).filename().string();
@@ -740,8 +749,7 @@ void EconeContactRun::trace_compared_modes() {
     m.end = cone.results.end;
     if (!m.completed) {
       const std::string why = "the " + std::to_string(n) + "-fold cone: " + m.end;
-      results_.end = results_.completed ? why : results_.end + "; " + why;
-      results_.completed = false;
+      mark_incomplete(why);
     }
     const double inf = std::numeric_limits<double>::infinity();
     for (const BranchEnergySample& s :
@@ -764,7 +772,8 @@ void EconeContactRun::trace_compared_modes() {
   }
 }
 
-/// Stage 8 (study.wind_to): from the skewed cone's highest stable state, the sheet grown on in
+/// Stage 8 (study.wind_to): from the highest stable state that breaks S4 (of the skewed or the
+/// turned cone), the sheet grown on in
 /// natural steps, each a strict minimum of shell + penalty (solvers/contact/
 /// contact_growth_path.hpp), so that where a stable state ends it drops onto the next one: the
 /// wound-up cones. Every accepted state to DIR/wound (row, state), the shapes at
@@ -784,15 +793,12 @@ void EconeContactRun::wind_up() {
     const std::string why =
         "no winding: neither the skewed nor the turned branch has a stable sample that breaks S4";
     say("# stage 8: " + why);
-    results_.end = results_.completed ? why : results_.end + "; " + why;
-    results_.completed = false;
+    mark_incomplete(why);
     return;
   }
   // Energies at two tops a little apart in phi_e are compared each against the symmetric
   // branch at its own phi_e (E rises with phi_e by more than the two cones differ).
-  std::vector<BranchStateSample> symmetric = symmetric_samples();
-  std::sort(symmetric.begin(), symmetric.end(),
-            [](const BranchStateSample& a, const BranchStateSample& b) { return a.phi_e < b.phi_e; });
+  const std::vector<BranchStateSample> symmetric = symmetric_samples_by_phi();
   const auto relative = [&symmetric](const TopSample& top) {
     const std::optional<double> reference = branch_energy_at(symmetric, top.phi);
     return reference && *reference > 0.0 ? top.energy / *reference : top.energy;
@@ -809,8 +815,8 @@ void EconeContactRun::wind_up() {
   w.start_phi = start.phi;
   w.target = target;
   // A resumed study continues the winding it recorded from the same start (the stages before
-  // are deterministic and give it again, to the bit) from its last committed state:
-  // grow_with_contact carries nothing from one step to the next but the state.
+  // are deterministic and give it again, to the bit) from its last committed state, with the
+  // step and pins the path had there (below).
   const std::string wound_dir = dir_ + "/wound";
   const std::string start_file = wound_dir + "/start.state";
   const std::string pins_file = wound_dir + "/pins.txt";
@@ -943,8 +949,7 @@ void EconeContactRun::wind_up() {
       std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) + " jumps)");
   if (!w.reached) {
     const std::string why = "winding: " + w.end;
-    results_.end = results_.completed ? why : results_.end + "; " + why;
-    results_.completed = false;
+    mark_incomplete(why);
   }
   results_.wound = std::move(w);
 }
