@@ -5,7 +5,7 @@ usage: render_surface.py INPUT.vtu OUTPUT.png [--field bending_density] [--elev 
                          [--phi PHI_E]
                          [--views "ELEV,AZIM;ELEV,AZIM;..."] [--contact CONTACT.vtu] [--log]
                          [--alpha 0.85]
-  --contact  a contact-proxy snapshot of the same state (trace_contact's *_contact_*.vtu):
+  --contact  a contact-proxy snapshot of the same state (an econe_contact study's *_contact.vtu):
              its points in contact are drawn in red, sized by their contact force, over the
              surface (also where a layer hides them: wound-up shapes touch between layers)
   --log      colour by log10 of the field (bending energy concentrates at the apex)

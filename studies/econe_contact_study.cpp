@@ -214,7 +214,7 @@ void EconeContactRun::trace_cone() {
   results_.phi_contact_start = start_.parameter;
 }
 
-/// The settings of stages 2-4 (as trace_contact's, from the scene), the proxy and the pins.
+/// The settings of stages 2-4 (from the scene), the proxy and the pins.
 void EconeContactRun::set_up_contact() {
   const SceneStudy& st = scene_.study;
   const Eigen::VectorXd& X = model_->reference_positions();

@@ -1,6 +1,6 @@
 #pragma once
 // The command line of the programs that read an earlier run (contact_profile,
-// crit_hard_contact, ...): the run's directory first, then `--name value` options; and their
+// hard_contact_at, ...): the run's directory first, then `--name value` options; and their
 // main().
 
 #include <cstdio>

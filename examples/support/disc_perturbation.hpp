@@ -1,6 +1,6 @@
 #pragma once
 // The seeded out-of-plane perturbation that starts a flat disc on the n = 2 e-cone
-// (econe_at, trace_contact).
+// (econe_at).
 
 #include <Eigen/Core>
 #include <cmath>

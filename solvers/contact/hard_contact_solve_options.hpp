@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Ipopt settings for re-solving a penalty-traced state under the hard constraints
-/// gap >= contact distance: the econe_contact study's check of the skewed state,
-/// trace_contact's and crit_hard_contact's.
+/// gap >= contact distance: the econe_contact study's check of the skewed state and its
+/// stage 7 (studies/hard_contact_check), and hard_contact_energy_crossing.
 
 #include "libshell/assembly/shell_model.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"

@@ -108,8 +108,8 @@ TEST(HardContactCrossing, SlopeIsTheDerivativeOfTheResolvedEnergyAlongTheConstra
       "(relative %.2e)\n",
       phi, slope, quotient, std::abs(quotient - slope) / std::abs(slope));
   EXPECT_NEAR(quotient, slope, 1e-5 * std::abs(slope));
-  // The same measure as crit_hard_contact uses to tell a sample that stayed on its branch from
-  // one that relaxed onto another: small here; a sample whose energy is off by a tenth of the
+  // The measure that tells a sample that stayed on its branch from one that relaxed onto
+  // another: small here; a sample whose energy is off by a tenth of the
   // energy change (as a jump to another branch would be, and far more) shows as 0.1.
   EXPECT_LT(branch_continuity_mismatch(r.a[0], r.a[1]), 1e-5);
   HardContactSample jumped = r.a[1];

@@ -368,7 +368,7 @@ TEST(PseudoArclength, SwitchesFromTheFlatBranchOntoTheTwoAndThreeFoldCones) {
     };
     EXPECT_LT(asymmetry(out_of_plane(false)), 1e-12);
     EXPECT_GT(asymmetry(out_of_plane(true)), 0.5);
-    // n = 2 (the cone trace_contact follows into contact): measured 5e-10 at the corrector
+    // n = 2 (the cone the econe_contact study follows into contact): measured 5e-10 at the corrector
     // tolerance 1e-9 (the pins are not mirror invariant, so the state is symmetric only up to
     // the solves' error). n = 3: on the hexagonal lattice cos 3 theta and sin 3 theta belong
     // to different symmetry classes and split, and the inverse iteration at the located point
