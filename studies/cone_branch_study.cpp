@@ -30,6 +30,7 @@
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/pattern_phase.hpp"
 #include "studies/saved_state.hpp"
+#include "studies/scene_arclength_corrector.hpp"
 #include "studies/special_point_modes.hpp"
 #include "studies/study_directory.hpp"
 #include "studies/turn_free_stability_index.hpp"
@@ -221,6 +222,7 @@ void ConeBranchRun::set_up() {
   arclength_.min_step = scene_.continuation.min_step;
   arclength_.gradient_tolerance = options_.tolerance * model_->natural_force_scale();
   arclength_.max_tangent_angle = options_.max_tangent_angle;
+  arclength_.corrector = scene_arclength_corrector(scene_);
   arclength_.parameter_min = scene_.continuation.phi_min;
   arclength_.parameter_max = scene_.continuation.phi_max;
 
@@ -507,6 +509,8 @@ ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_con
        << ", \"cone_steps\": " << trace.steps << ", \"failed_steps\": " << trace.failed_steps
        << ", \"linearizations\": " << c.linearizations
        << ", \"factorizations\": " << c.factorizations << ", \"solves\": " << c.solves
+       << ", \"gradient_evaluations\": " << c.gradient_evaluations
+       << ", \"chord_fallbacks\": " << c.chord_fallbacks
        << ", \"assembly_seconds\": " << c.assembly_seconds
        << ", \"factorization_seconds\": " << c.factorization_seconds
        << ", \"solve_seconds\": " << c.solve_seconds

@@ -33,6 +33,7 @@
 #include "studies/ground_state_exchange.hpp"
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
+#include "studies/scene_arclength_corrector.hpp"
 #include "studies/scene_contact_penalty.hpp"
 #include "studies/turn_free_stability_index.hpp"
 
@@ -231,6 +232,7 @@ void EconeContactRun::set_up_contact() {
   c.arclength.min_step = 1e-6;
   c.arclength.gradient_tolerance = st.tolerance * model_->natural_force_scale();
   c.arclength.max_tangent_angle = 0.5;
+  c.arclength.corrector = scene_arclength_corrector(scene_);
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
   // finite angle over any step: short steps are accepted on a converged corrector alone.
   c.arclength.angle_test_max_step = 0.02 * st.contact_max_step;

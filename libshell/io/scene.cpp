@@ -64,6 +64,8 @@ const NameTable<GrowthSmoothingProfile> kSmoothingProfileNames = {
     {GrowthSmoothingProfile::Rational, "rational"}, {GrowthSmoothingProfile::Gaussian, "gaussian"}};
 const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
+const NameTable<SceneCorrector> kCorrectorNames = {{SceneCorrector::Newton, "newton"},
+                                                   {SceneCorrector::Chord, "chord"}};
 const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"},
                                               {StudyKind::ThicknessSeries, "thickness_series"},
                                               {StudyKind::EconeContact, "econe_contact"},
@@ -319,6 +321,9 @@ const Field kFields[] = {
   {"continuation.direction",
    [](Scene& s, const Json& v, const std::string& k) { s.continuation.direction = read_enum(v, k, kDirectionNames); },
    [](const Scene& s) { return Json(enum_name(kDirectionNames, s.continuation.direction)); }, true},
+  {"continuation.corrector",
+   [](Scene& s, const Json& v, const std::string& k) { s.continuation.corrector = read_enum(v, k, kCorrectorNames); },
+   [](const Scene& s) { return Json(enum_name(kCorrectorNames, s.continuation.corrector)); }, true},
   {"continuation.mode",
    [](Scene& s, const Json& v, const std::string& k) { s.continuation.mode = read_int(v, k); },
    [](const Scene& s) { return Json(s.continuation.mode); }},

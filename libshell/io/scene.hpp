@@ -155,6 +155,12 @@ enum class ContinuationDirection {
   Backward,  ///< decreasing phi_e, down to phi_min
 };
 
+/// The corrector of pseudo-arclength continuation (ArclengthOptions::Corrector).
+enum class SceneCorrector {
+  Newton,  ///< a Hessian factorisation per corrector iteration
+  Chord,   ///< iterations reuse the last factorisation; Newton where they stop contracting
+};
+
 /// Continuation in the excess angle phi_e (radians) and the initial perturbation.
 struct SceneContinuation {
   /// First excess angle of the path, in [phi_min, phi_max].
@@ -168,6 +174,8 @@ struct SceneContinuation {
   /// Smallest continuation step (rad) before giving up, in (0, max_step].
   double min_step = 1e-4;
   ContinuationDirection direction = ContinuationDirection::Forward;
+  /// The corrector of the branches traced by pseudo-arclength continuation.
+  SceneCorrector corrector = SceneCorrector::Newton;
   /// Fold number n of the branch to follow (2 = the saddle e-cone), >= 2.
   int mode = 2;
   /// Amplitude of the initial out-of-plane perturbation relative to R (dimensionless), >= 0.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "solvers/newton/fixed_dof_elimination.hpp"
@@ -64,6 +65,7 @@ class BranchSolver {
     fixed_.apply(hessian_);
     const Eigen::Map<const Eigen::VectorXd> values(hessian_.valuePtr(), hessian_.nonZeros());
     if (!values.allFinite()) return false;
+    factorized_ = false;
     try {
       ++cost_.factorizations;
       ScopedSeconds timer(cost_.factorization_seconds);
@@ -77,7 +79,8 @@ class BranchSolver {
       parameter_derivative_ = family_.gradient_parameter_derivative(x, lambda);
     }
     fixed_.zero_fixed(parameter_derivative_);
-    return parameter_derivative_.allFinite();
+    factorized_ = parameter_derivative_.allFinite();
+    return factorized_;
   }
 
   /// Unit tangent at the last linearisation, oriented along (rx, rl).
@@ -104,30 +107,39 @@ class BranchSolver {
   }
 
   /// Corrects the predictor (xp, lp) on the hyperplane through it orthogonal to (tx, tl).
-  /// On success fills `sample` (state, inertia, tangent oriented along (tx, tl)).
+  /// On success fills `sample` (state, inertia, tangent oriented along (tx, tl)) and sets
+  /// step_factor(). With the chord corrector the iterations start from the last
+  /// factorisation, if there is one, and Newton takes over where the chord stops contracting.
+  /// With `analyse` false only the state and parameter are wanted (an event's bisection): the
+  /// tangent and the stability index are left out, and so is a chord's final factorisation.
   bool correct(const Eigen::VectorXd& xp, double lp, const Eigen::VectorXd& tx, double tl,
-               BranchSample& sample) {
+               BranchSample& sample, bool analyse = true) {
     Eigen::VectorXd x = xp;
     double lambda = lp;
+    const bool use_chord = options_.corrector == ArclengthOptions::Corrector::Chord && factorized_;
+    int chord_iterations = 0;
+    if (use_chord) {
+      if (chord(xp, lp, tx, tl, x, lambda, chord_iterations)) {
+        if (!analyse) {
+          sample.x = x;
+          sample.parameter = lambda;
+          sample.corrector_iterations = chord_iterations;
+          return true;
+        }
+        if (!linearize(x, lambda) || fixed_.free_inf_norm(gradient_) > options_.gradient_tolerance)
+          return false;
+        step_factor_ = factor(options_.target_chord_iterations, chord_iterations);
+        return converged(x, lambda, chord_iterations, tx, tl, sample, true);
+      }
+      ++cost_.chord_fallbacks;
+    }
     for (int it = 0; it <= options_.max_corrector_iterations; ++it) {
       if (!linearize(x, lambda)) return false;
       const double residual = fixed_.free_inf_norm(gradient_);
       if (residual <= options_.gradient_tolerance) {
-        sample.x = x;
-        sample.parameter = lambda;
-        sample.corrector_iterations = it;
-        sample.negative_eigenvalues = negative_eigenvalues();
-        tangent(tx, tl, sample.tangent_state, sample.tangent_parameter);
-        if (options_.stability_index) {
-          ++cost_.stability_evaluations;
-          ScopedSeconds timer(cost_.stability_seconds);
-          try {
-            sample.negative_eigenvalues = options_.stability_index(sample);
-          } catch (const std::runtime_error&) {
-            return false;
-          }
-        }
-        return true;
+        // After a chord that stopped contracting, its iterations count as one of Newton's.
+        step_factor_ = factor(options_.target_iterations, use_chord ? it + 1 : it);
+        return converged(x, lambda, chord_iterations + it, tx, tl, sample, analyse);
       }
       if (it == options_.max_corrector_iterations) return false;
       Eigen::VectorXd a = timed_solve(gradient_);
@@ -145,9 +157,104 @@ class BranchSolver {
     return false;
   }
 
+  /// Makes (x, lambda) of `sample` the point the next chord starts from: after a bisection
+  /// the last factorisation is of some point inside the bracket, and a trace must not depend
+  /// on that (a trace resumed from a sample then takes the same steps as one that went on).
+  void anchor_chord_at(const BranchSample& sample) {
+    if (options_.corrector == ArclengthOptions::Corrector::Chord)
+      linearize(sample.x, sample.parameter);
+  }
+
+  /// The factor by which the step control changes the step after the last successful
+  /// correct(): target / iterations, in [1/2, 2].
+  double step_factor() const { return step_factor_; }
+
   TraceCost& cost() { return cost_; }
 
  private:
+  static double factor(int target, int iterations) {
+    return std::clamp(static_cast<double>(target) / std::max(1, iterations), 0.5, 2.0);
+  }
+
+  /// Fills `sample` with the converged point (x, lambda) of the last linearisation: its
+  /// inertia (or, if `analyse`, the caller's stability index) and, if `analyse`, its tangent.
+  bool converged(const Eigen::VectorXd& x, double lambda, int iterations,
+                 const Eigen::VectorXd& tx, double tl, BranchSample& sample, bool analyse) {
+    sample.x = x;
+    sample.parameter = lambda;
+    sample.corrector_iterations = iterations;
+    sample.negative_eigenvalues = negative_eigenvalues();
+    if (!analyse) return true;
+    tangent(tx, tl, sample.tangent_state, sample.tangent_parameter);
+    if (options_.stability_index) {
+      ++cost_.stability_evaluations;
+      ScopedSeconds timer(cost_.stability_seconds);
+      try {
+        sample.negative_eigenvalues = options_.stability_index(sample);
+      } catch (const std::runtime_error&) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  /// The free gradient's inf-norm at (x, lambda) from a gradient-only assembly (into
+  /// gradient_); NaN where the family cannot be evaluated.
+  double residual_at(const Eigen::VectorXd& x, double lambda) {
+    if (!std::isfinite(lambda) || !x.allFinite() || !family_.accepts_parameter(lambda))
+      return std::numeric_limits<double>::quiet_NaN();
+    ++cost_.gradient_evaluations;
+    double e = 0.0;
+    {
+      ScopedSeconds timer(cost_.assembly_seconds);
+      e = family_.evaluate(x, lambda, &gradient_, nullptr);
+    }
+    if (!std::isfinite(e) || !gradient_.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+    fixed_.zero_fixed(gradient_);
+    return fixed_.free_inf_norm(gradient_);
+  }
+
+  /// Chord iterations on the bordered system with the last factorisation (and its
+  /// d(gradient)/d(lambda)), from (x, lambda) = (xp, lp). True if the residual fell to the
+  /// tolerance, with (x, lambda) the converged point; false where it stopped contracting, ran
+  /// out of iterations or left the domain, with (x, lambda) its lowest-residual iterate.
+  /// `iterations` counts the updates made.
+  bool chord(const Eigen::VectorXd& xp, double lp, const Eigen::VectorXd& tx, double tl,
+             Eigen::VectorXd& x, double& lambda, int& iterations) {
+    Eigen::VectorXd b = timed_solve(parameter_derivative_);
+    fixed_.zero_fixed(b);
+    const double denominator = tl - weight_ * tx.dot(b);
+    iterations = 0;
+    if (!(std::abs(denominator) > 0.0)) return false;
+    Eigen::VectorXd best_x = x;
+    double best_lambda = lambda;
+    double best = std::numeric_limits<double>::infinity();
+    double previous = best;
+    for (;; ++iterations) {
+      const double residual = residual_at(x, lambda);
+      if (!std::isfinite(residual)) break;
+      if (residual < best) {
+        best = residual;
+        best_x = x;
+        best_lambda = lambda;
+      }
+      if (residual <= options_.gradient_tolerance) return true;
+      if (iterations >= options_.max_chord_iterations ||
+          residual > options_.chord_contraction * previous)
+        break;
+      previous = residual;
+      Eigen::VectorXd a = timed_solve(gradient_);
+      fixed_.zero_fixed(a);
+      const double c = weight_ * tx.dot(x - xp) + tl * (lambda - lp);
+      const double dl = (weight_ * tx.dot(a) - c) / denominator;
+      x -= a + dl * b;
+      lambda += dl;
+    }
+    x = best_x;
+    lambda = best_lambda;
+    return false;
+  }
+
   Eigen::VectorXd timed_solve(const Eigen::VectorXd& rhs) {
     ++cost_.solves;
     ScopedSeconds timer(cost_.solve_seconds);
@@ -162,6 +269,10 @@ class BranchSolver {
   SymmetricIndefiniteFactorization factorization_;
   Eigen::VectorXd gradient_;
   Eigen::VectorXd parameter_derivative_;
+  /// The factorisation and parameter_derivative_ are those of one point (the last
+  /// successful linearisation), which the chord corrector may start from.
+  bool factorized_ = false;
+  double step_factor_ = 1.0;
   TraceCost cost_;
 };
 
@@ -203,12 +314,10 @@ Eigen::VectorXd critical_mode(const ParametrizedObjective& family, const Eigen::
 
 namespace {
 
-/// The step after `sample`, reached by a step of `step`: longer when its corrector took fewer
-/// iterations than the target, shorter when more (by a factor in [1/2, 2]), at most max_step.
-double next_step_after(double step, const BranchSample& sample, const ArclengthOptions& options) {
-  const double factor = std::clamp(
-      static_cast<double>(options.target_iterations) / std::max(1, sample.corrector_iterations),
-      0.5, 2.0);
+/// The step after a sample reached by a step of `step`: `factor` times longer (the solver's
+/// step_factor(): longer when its corrector took fewer iterations than the target, shorter
+/// when more), at most max_step.
+double next_step_after(double step, double factor, const ArclengthOptions& options) {
   return std::min(options.max_step, step * factor);
 }
 
@@ -275,6 +384,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
                     (step <= options.angle_test_max_step ||
                      solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
                                 p.tangent_parameter) >= cos_max);
+    // The step control's factor of this step (bisections below correct other points).
+    double step_factor = solver.step_factor();
     if (!ok) {
       ++out.failed_steps;
       step /= 2;
@@ -286,13 +397,23 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     }
     next.arclength = p.arclength + step;
 
+    bool bisected = false;  // the solver's last factorisation is not next's
     if (next.negative_eigenvalues != p.negative_eigenvalues) {
+      bisected = true;
       // Bisect the step in arclength, keeping the count change inside [s_lo, s_hi], until
       // lambda differs by less than the tolerance across the bracket.
-      double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter;
+      double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter, slope_lo = p.tangent_parameter;
       BranchSample hi = next;
-      for (int k = 0; k < 60 && std::abs(hi.parameter - lambda_lo) > options.special_point_tolerance;
-           ++k) {
+      // Located when lambda varies by less than the tolerance over the bracket: its ends
+      // differ by less, and (at a fold, where both ends may lie at the same lambda below the
+      // turning point) the larger slope dlambda/ds at an end times the bracket's arclength,
+      // which bounds how far lambda rises inside, is less too.
+      const auto located = [&] {
+        const double slope = std::max(std::abs(slope_lo), std::abs(hi.tangent_parameter));
+        return std::abs(hi.parameter - lambda_lo) <= options.special_point_tolerance &&
+               slope * (s_hi - s_lo) <= options.special_point_tolerance;
+      };
+      for (int k = 0; k < 60 && !located(); ++k) {
         // The midpoint may sit exactly on the singular point (zero pivot), or so close to it
         // that the corrector does not converge: then another point inside the bracket serves
         // as well (a bracket only has to shrink). Ends the bisection only if all fail.
@@ -311,6 +432,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
         if (mid.negative_eigenvalues == p.negative_eigenvalues) {
           s_lo = s_mid;
           lambda_lo = mid.parameter;
+          slope_lo = mid.tangent_parameter;
         } else {
           s_hi = s_mid;
           hi = std::move(mid);
@@ -333,6 +455,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
             solver.dot(over.tangent_state, over.tangent_parameter, p.tangent_state,
                        p.tangent_parameter) >= cos_max) {
           over.arclength = p.arclength + s_over;
+          step_factor = solver.step_factor();
           next = std::move(over);
           step = s_over;
           ++out.branch_point_steps_over;
@@ -357,7 +480,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
           static_cast<int>(out.special_points.size()) >= options.max_special_points) {
         out.last = std::move(next);
         ++out.steps;
-        out.last.next_step = next_step_after(step, out.last, options);
+        out.last.next_step = next_step_after(step, step_factor, options);
         sample_done(out.last);
         out.reached_bound = true;
         out.message = "found max_special_points special points";
@@ -371,14 +494,17 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     for (const BranchEvent& e : events) next_values.push_back(event_value(e, next));
     for (std::size_t k = 0; k < events.size(); ++k) {
       if (!(event_values[k] * next_values[k] < 0.0)) continue;
+      bisected = true;
       double s_lo = 0.0, s_hi = step, lambda_lo = p.parameter;
       BranchSample hi = next;
+      // Unless the test function needs it, the bisection's points have no tangent or index.
+      bool hi_analysed = true;
       for (int it = 0; it < 60 && std::abs(hi.parameter - lambda_lo) > options.special_point_tolerance;
            ++it) {
         const double s_mid = 0.5 * (s_lo + s_hi);
         BranchSample mid;
         if (!solver.correct(p.x + s_mid * p.tangent_state, p.parameter + s_mid * p.tangent_parameter,
-                            p.tangent_state, p.tangent_parameter, mid))
+                            p.tangent_state, p.tangent_parameter, mid, events[k].needs_tangent))
           break;
         if (event_value(events[k], mid) * event_values[k] > 0.0) {
           s_lo = s_mid;
@@ -386,6 +512,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
         } else {
           s_hi = s_mid;
           hi = std::move(mid);
+          hi_analysed = events[k].needs_tangent;
         }
       }
       LocatedEvent located{events[k].kind, 0.5 * (hi.parameter + lambda_lo), hi.x,
@@ -396,17 +523,25 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
         on_event(located);
       }
       if (events[k].stop) {
+        // The trace ends at the event's far end: a sample like any other (else at `next`).
+        BranchSample end;
+        if (hi_analysed || solver.correct(p.x + s_hi * p.tangent_state,
+                                          p.parameter + s_hi * p.tangent_parameter,
+                                          p.tangent_state, p.tangent_parameter, end)) {
+          if (!hi_analysed) hi = std::move(end);
+          hi.arclength = p.arclength + s_hi;
+          next = std::move(hi);
+        }
         stop = true;
-        hi.arclength = p.arclength + s_hi;
-        next = std::move(hi);
         break;
       }
     }
     event_values = next_values;
+    if (bisected) solver.anchor_chord_at(next);
 
     out.last = std::move(next);
     ++out.steps;
-    step = next_step_after(step, out.last, options);
+    step = next_step_after(step, step_factor, options);
     out.last.next_step = step;
     sample_done(out.last);
     if (stop) {

@@ -20,8 +20,27 @@ struct ArclengthOptions {
   double initial_step = 0.05;  ///< first arclength step
   double min_step = 1e-7;      ///< a step that fails below this ends the trace
   double max_step = 0.5;
-  int target_iterations = 4;   ///< corrector iterations the step control aims at
+  /// How the corrector solves the bordered system of a step.
+  enum class Corrector {
+    /// Newton's method: every iteration assembles and factorises the Hessian.
+    Newton,
+    /// The chord method (modified Newton): the iterations reuse the factorisation of the
+    /// last corrected point (the previous sample's, which its tangent and stability index
+    /// needed anyway) and assemble only the gradient; the converged point is factorised once,
+    /// for its tangent and stability index. Where the chord stops contracting (a residual
+    /// not below `chord_contraction` times the previous one) or needs more than
+    /// `max_chord_iterations`, the step goes on by Newton from its best iterate, so it
+    /// converges to the same tolerance as Newton wherever Newton does.
+    Chord,
+  };
+  Corrector corrector = Corrector::Newton;
+  int target_iterations = 4;   ///< Newton iterations the step control aims at
   int max_corrector_iterations = 15;
+  /// Chord iterations the step control aims at (Corrector::Chord): a step whose chord
+  /// converged in fewer is lengthened, in more shortened, as for Newton's target_iterations.
+  int target_chord_iterations = 10;
+  int max_chord_iterations = 25;
+  double chord_contraction = 0.7;
   double max_tangent_angle = 0.3;  ///< radians between successive tangents
   /// Steps no longer than this skip the tangent-angle test (a converged corrector suffices).
   /// Where the tangent jumps by a finite angle over an arbitrarily short step (a Hessian that
@@ -52,6 +71,8 @@ struct BranchSample {
   Eigen::VectorXd x;
   double arclength = 0.0;
   int negative_eigenvalues = 0;  ///< of the Hessian with the fixed dofs removed
+  /// Iterations of the corrector that converged: Newton's, or, with Corrector::Chord, the
+  /// chord iterations plus any Newton iterations after them.
   int corrector_iterations = 0;
   Eigen::VectorXd tangent_state;  ///< dx/ds
   double tangent_parameter = 0.0;  ///< dlambda/ds
@@ -81,6 +102,9 @@ struct BranchEvent {
   std::string kind;  ///< e.g. "contact", "eb_max"
   std::function<double(const BranchSample&)> value;
   bool stop = false;  ///< end the trace at this event
+  /// The test function reads the sample's tangent (else the points of its bisection come
+  /// without one, which spares the chord corrector a factorisation per point).
+  bool needs_tangent = false;
 };
 
 /// A located event.
@@ -98,7 +122,11 @@ struct TraceCost {
   int linearizations = 0;      ///< energy/gradient/Hessian assemblies (each then factorised)
   int factorizations = 0;      ///< LDL^T factorisations that succeeded or failed
   int solves = 0;              ///< triangular solves with the factorisation
-  double assembly_seconds = 0.0;       ///< family.evaluate + d(gradient)/d(lambda)
+  /// Gradient-only assemblies of the chord corrector (ArclengthOptions::Corrector::Chord).
+  int gradient_evaluations = 0;
+  /// Chord correctors that stopped contracting and went on by Newton.
+  int chord_fallbacks = 0;
+  double assembly_seconds = 0.0;  ///< family.evaluate (the chord's gradients too) + dg/dlambda
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
   double event_seconds = 0.0;   ///< evaluating the event test functions
@@ -114,6 +142,8 @@ struct TraceCost {
     linearizations += other.linearizations;
     factorizations += other.factorizations;
     solves += other.solves;
+    gradient_evaluations += other.gradient_evaluations;
+    chord_fallbacks += other.chord_fallbacks;
     assembly_seconds += other.assembly_seconds;
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -176,6 +177,110 @@ TEST(PseudoArclength, FindsTheBranchPointsOfSimpleAndDoublePitchforks) {
     EXPECT_NEAR(sp.parameter, 0.0, 1e-6);
     EXPECT_EQ(sp.multiplicity, kind == ToyFamily::Kind::Pitchfork ? 1 : 2);
     EXPECT_LE(sp.bracket_width, 1e-6);
+  }
+}
+
+// The chord corrector (ArclengthOptions::Corrector::Chord) reuses the previous sample's
+// factorisation: the same folds, located as precisely, the same branch to the tolerance, and
+// fewer factorisations than Newton's method needs, on an S-curve whose Hessian changes sign
+// (so the chord must hand over to Newton next to the folds).
+TEST(PseudoArclength, ChordCorrectorFollowsTheSameBranchWithFewerFactorisations) {
+  ToyFamily family(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5, lambda0 = y0 * y0 * y0 - y0;
+  const Eigen::VectorXd x0 = family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0));
+  ArclengthOptions newton = toy_options();
+  ArclengthOptions chord = newton;
+  chord.corrector = ArclengthOptions::Corrector::Chord;
+  std::vector<BranchSample> samples;
+  const BranchTrace by_newton = trace_branch(family, x0, -lambda0, -1, {}, newton);
+  const BranchTrace by_chord = trace_branch(family, x0, -lambda0, -1, {}, chord,
+                                            [&](const BranchSample& s) { samples.push_back(s); });
+  ASSERT_EQ(by_chord.special_points.size(), 2u) << by_chord.message;
+  const double fold = 2.0 / (3.0 * std::sqrt(3.0));
+  EXPECT_NEAR(by_chord.special_points[0].parameter, -fold, 1e-6);
+  EXPECT_NEAR(by_chord.special_points[1].parameter, fold, 1e-6);
+  EXPECT_EQ(by_chord.special_points[0].kind, SpecialPoint::Kind::Fold);
+  EXPECT_TRUE(by_chord.reached_bound);
+  for (const BranchSample& s : samples) {
+    const double y = s.x(0);
+    EXPECT_NEAR(s.parameter, y - y * y * y, 1e-10);
+    EXPECT_EQ(s.negative_eigenvalues, 3 * y * y - 1 < 0 ? 1 : 0) << "y = " << y;
+    ASSERT_EQ(s.tangent_state.size(), family.dimension());
+  }
+  EXPECT_GT(by_chord.cost.gradient_evaluations, 0);
+  EXPECT_EQ(by_newton.cost.gradient_evaluations, 0);
+  const double per_step_newton =
+      static_cast<double>(by_newton.cost.factorizations) / by_newton.steps;
+  const double per_step_chord = static_cast<double>(by_chord.cost.factorizations) / by_chord.steps;
+  std::printf("factorisations per step: Newton %.2f (%d steps), chord %.2f (%d steps, %d "
+              "fallbacks)\n",
+              per_step_newton, by_newton.steps, per_step_chord, by_chord.steps,
+              by_chord.cost.chord_fallbacks);
+  EXPECT_LT(per_step_chord, 0.75 * per_step_newton);
+}
+
+// An event's bisection gives its test function a tangent only if it asks for one
+// (BranchEvent::needs_tangent); the sample the trace stops at has one either way.
+TEST(PseudoArclength, EventBisectionGivesATangentOnlyWhereTheEventNeedsIt) {
+  for (const auto corrector : {ArclengthOptions::Corrector::Newton, ArclengthOptions::Corrector::Chord}) {
+    for (const bool needs_tangent : {false, true}) {
+      ToyFamily family(ToyFamily::Kind::SCurve, 3);
+      const double y0 = -1.5;
+      ArclengthOptions o = toy_options();
+      o.corrector = corrector;
+      int without_tangent = 0;
+      BranchEvent event{"y_crossing",
+                        [&](const BranchSample& s) {
+                          if (s.tangent_state.size() != s.x.size()) ++without_tangent;
+                          return s.x(0) - 0.2;
+                        },
+                        true, needs_tangent};
+      const BranchTrace trace = trace_branch_along(
+          family, family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0)),
+          y0 - y0 * y0 * y0, Eigen::VectorXd::Zero(family.dimension()), -1.0, {}, o, {}, {},
+          {event});
+      ASSERT_EQ(trace.events.size(), 1u) << trace.message;
+      EXPECT_NEAR(trace.events[0].parameter, 0.192, 1e-6);
+      EXPECT_NEAR(trace.last.parameter, 0.192, 1e-6);
+      EXPECT_EQ(trace.last.tangent_state.size(), family.dimension());
+      if (needs_tangent)
+        EXPECT_EQ(without_tangent, 0);
+      else
+        EXPECT_GT(without_tangent, 10);  // the bisection's points, about 17 halvings
+    }
+  }
+}
+
+// A chord trace started again from one of its samples, with that sample's next step, takes
+// the same steps as the trace that went on: the chord starts from the previous sample's
+// factorisation even after a bisection (a fold and an event lie on the way), so a resumed
+// study continues its record exactly.
+TEST(PseudoArclength, ChordTraceStartedAgainFromASampleRepeatsTheRest) {
+  ToyFamily family(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5;
+  ArclengthOptions o = toy_options();
+  o.corrector = ArclengthOptions::Corrector::Chord;
+  const std::vector<BranchEvent> events{
+      {"y_crossing", [](const BranchSample& s) { return s.x(0) + 0.9; }, false}};
+  std::vector<BranchSample> whole;
+  trace_branch_along(family, family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0)),
+                     y0 - y0 * y0 * y0, Eigen::VectorXd::Zero(family.dimension()), -1.0, {}, o,
+                     [&](const BranchSample& s) { whole.push_back(s); }, {}, events);
+  ASSERT_GT(whole.size(), 12u);
+  // Samples after the event (y = -0.9) and the first fold (y = -0.577).
+  for (const std::size_t k : {whole.size() / 2, whole.size() - 4}) {
+    ASSERT_GT(whole[k].x(0), -0.5);
+    ArclengthOptions again = o;
+    again.initial_step = whole[k].next_step;
+    std::vector<BranchSample> rest;
+    trace_branch_along(family, whole[k].x, whole[k].parameter, whole[k].tangent_state,
+                       whole[k].tangent_parameter, {}, again,
+                       [&](const BranchSample& s) { rest.push_back(s); }, {}, events);
+    ASSERT_EQ(rest.size(), whole.size() - k) << "from sample " << k;
+    for (std::size_t i = 1; i < rest.size(); ++i) {
+      EXPECT_EQ(rest[i].parameter, whole[k + i].parameter) << "sample " << k + i;
+      EXPECT_EQ((rest[i].x - whole[k + i].x).lpNorm<Eigen::Infinity>(), 0.0);
+    }
   }
 }
 

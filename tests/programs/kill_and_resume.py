@@ -1,7 +1,11 @@
 """A study killed with SIGKILL at random moments and resumed each time ends with the record of
 the run that was never interrupted (issue #17, item 2).
 
-usage: kill_and_resume.py GROWSHELL OUT_DIR
+usage: kill_and_resume.py GROWSHELL OUT_DIR [CORRECTOR]
+
+CORRECTOR (newton, the default, or chord) is the scene's continuation.corrector: the chord
+starts each step from the previous sample's factorisation, which a resumed run must rebuild
+exactly.
 
 Runs a small cone_branch study (`growshell run`) once without interruption, then again into
 another directory, killed (kill -9) ten times and resumed with --resume after each kill, and
@@ -77,14 +81,17 @@ def close(a, b):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
     growshell, out = sys.argv[1], sys.argv[2]
+    corrector = sys.argv[3] if len(sys.argv) == 4 else "newton"
+    if corrector not in ("newton", "chord"):
+        sys.exit(f"CORRECTOR must be newton or chord, not {corrector!r}")
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     scene = os.path.join(out, "small.json")
     with open(scene, "w") as f:
-        json.dump(SCENE, f)
+        json.dump(dict(SCENE, continuation=dict(SCENE["continuation"], corrector=corrector)), f)
     failures = []
 
     reference = os.path.join(out, "uninterrupted")
