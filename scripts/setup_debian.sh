@@ -21,6 +21,9 @@ packages=(
   libopenmpi-dev openmpi-bin  # mpirun -n K growshell sweep: the sweep's points spread over MPI ranks (programs/ only)
   python3-matplotlib   # figures: scripts/plot_study.py (growshell run draws DIR/eb_hat.png), render_surface.py
   python3              # the layering test (tests/layering/check_layering.py)
+  python3-dev python3-pybind11  # the Python module `growshell` (python/), built against Debian's python3
+  python3-numpy python3-scipy   # the module's arrays (numpy) and sparse Hessians (scipy.sparse)
+  python3-pytest       # the module's tests (tests/python/), run by ctest
 )
 
 missing=()

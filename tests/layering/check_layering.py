@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The layers of the house: every #include "..." in core/, libshell/, solvers/, studies/,
-programs/ and examples/ may name only a file of its own layer or of a layer below it.
+programs/, examples/ and python/ may name only a file of its own layer or of a layer below it.
 
 Usage: check_layering.py <source dir>
 
@@ -14,9 +14,8 @@ assembly, subdivision and mesh; io uses contact, assembly, energy, subdivision a
 Within solvers: stability uses newton; dynamics (the damped-dynamics baseline) uses
 stability; continuation uses stability and newton; contact uses newton, stability and
 continuation. Folders that do not use each other today (energy and mesh/subdivision, analysis
-and io) are still ranked: the lower may not include the higher. Only the two kinds of
-program share a rank: programs/ and examples/ both sit on examples/support and may not
-include each other.
+and io) are still ranked: the lower may not include the higher. Only the programs share a rank: programs/ and examples/ both sit on examples/support, and
+python/ (the Python module) on studies; none of them may include another.
 """
 
 import pathlib
@@ -42,7 +41,7 @@ RANKS = [
     ["solvers/contact"],
     ["studies"],
     ["examples/support"],
-    ["programs", "examples"],
+    ["programs", "examples", "python"],
 ]
 RANK = {layer: rank for rank, layers in enumerate(RANKS) for layer in layers}
 LAYERS = list(RANK)

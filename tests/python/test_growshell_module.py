@@ -1,0 +1,151 @@
+"""The Python package growshell (python/), run by ctest `python_module` with PYTHONPATH at the
+build tree's python/ and GROWSHELL_MODEL_VALUES naming tests/python/model_values.cpp's
+program, GROWSHELL_TEST_OUT a scratch directory.
+
+- energy, gradient and Hessian through Python equal the library's (model_values) to the last
+  bits (1e-13 relative: the same code, only copied);
+- the gradient and the Hessian agree with central differences of the energy and the gradient
+  (relative 1e-6 at step 1e-6 m on a state of the coarse cone mesh);
+- a small cone_branch study run from Python: the flat sheet's first branch point at
+  c2 h^2 / R^2 (physics.md: c2 = 10.59) within this coarse mesh's 3 %, its branch's columns as
+  numpy arrays, every progress line delivered, a used directory refused, and a resume of the
+  finished study returns the same results;
+- bad input raises ValueError (or FileNotFoundError-like RuntimeError) with the library's
+  message naming what is wrong.
+"""
+
+import json
+import math
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import growshell
+
+SCENE = {"thickness": 0.04, "mesh": {"size_slope": 0.25},
+         "continuation": {"phi_max": 0.3}, "output": {"write_vtk": False},
+         "study": {"eigenmodes": 0}}
+PHI = 0.4
+
+
+@pytest.fixture(scope="module")
+def scratch():
+    out = pathlib.Path(os.environ.get("GROWSHELL_TEST_OUT", "python_module_out"))
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+@pytest.fixture(scope="module")
+def scene(scratch):
+    path = scratch / "coarse.json"
+    path.write_text(json.dumps(SCENE))
+    return path
+
+
+@pytest.fixture(scope="module")
+def model(scene):
+    return growshell.model_from_scene(scene)
+
+
+def perturbed(model):
+    x = model.reference_positions()
+    i = np.arange(x.size, dtype=float)
+    return x + 1e-3 * np.sin(0.7 * i + 0.3)
+
+
+def test_values_equal_the_librarys(model, scene):
+    program = os.environ.get("GROWSHELL_MODEL_VALUES")
+    if not program:
+        pytest.skip("GROWSHELL_MODEL_VALUES not set (run through ctest)")
+    reference = json.loads(subprocess.run([program, str(scene), repr(PHI)], check=True,
+                                          capture_output=True, text=True).stdout)
+    x = perturbed(model)
+    assert model.energy(x, PHI) == pytest.approx(reference["energy"], rel=1e-13)
+    g = model.gradient(x, PHI)
+    g_ref = np.array(reference["gradient"])
+    assert g.shape == g_ref.shape
+    assert np.max(np.abs(g - g_ref)) <= 1e-13 * np.max(np.abs(g_ref))
+    H = model.hessian(x, PHI)
+    upper = np.array(reference["hessian_upper"])
+    rows, cols = upper[:, 0].astype(int), upper[:, 1].astype(int)
+    values = np.asarray(H[rows, cols]).ravel()
+    assert np.max(np.abs(values - upper[:, 2])) <= 1e-13 * np.max(np.abs(upper[:, 2]))
+    # Symmetric, and nothing beyond the library's pattern.
+    assert abs(H - H.T).max() == 0.0
+    assert H.nnz == 2 * len(upper) - np.count_nonzero(rows == cols)
+
+
+def test_gradient_and_hessian_against_central_differences(model):
+    x = perturbed(model)
+    rng = np.random.default_rng(7)
+    g = model.gradient(x, PHI)
+    H = model.hessian(x, PHI)
+    step = 1e-6
+    for _ in range(3):
+        v = rng.standard_normal(x.size)
+        v /= np.linalg.norm(v)
+        slope = (model.energy(x + step * v, PHI) - model.energy(x - step * v, PHI)) / (2 * step)
+        assert slope == pytest.approx(g @ v, rel=1e-6)
+        dg = (model.gradient(x + step * v, PHI) - model.gradient(x - step * v, PHI)) / (2 * step)
+        Hv = H @ v
+        assert np.linalg.norm(dg - Hv) <= 1e-6 * np.linalg.norm(Hv)
+
+
+def test_flat_sheet_has_no_bending_and_phi_e_is_an_argument(model):
+    x = model.reference_positions()
+    parts = model.energy_breakdown(x, 0.0)
+    assert parts["bending"] == 0.0
+    assert parts["stretching"] == pytest.approx(0.0, abs=1e-20)
+    # Growth stretches the flat sheet; the model keeps no excess angle between calls.
+    assert model.energy(x, PHI) > 0.0
+    assert model.energy(x, 0.0) == pytest.approx(0.0, abs=1e-20)
+    points = model.limit_positions(x)
+    assert points.shape[1] == 3 and 0 < points.shape[0] <= model.dimension // 3
+    # The flat sheet's limit surface lies in the plane z = 0, inside the disc of radius 1 and
+    # close to its rim (the limit of the rim polygon; 0.9936 on this mesh).
+    assert np.max(np.abs(points[:, 2])) < 1e-12
+    assert 0.98 < np.max(np.hypot(points[:, 0], points[:, 1])) <= 1.0 + 1e-12
+    assert model.scene["thickness"] == 0.04
+
+
+def test_a_small_study_end_to_end(scene, scratch):
+    out = scratch / "cone"
+    lines = []
+    results = growshell.run_study(scene, out, overwrite=out.exists(), progress=lines.append)
+    assert results.completed, results.end
+    c2 = 10.59
+    assert results["phi_branch"] == pytest.approx(c2 * 0.04 ** 2, rel=0.03)
+    branch = results.branch()
+    assert branch["phi_e"].size >= 5
+    assert np.all(np.diff(branch["phi_e"][1:]) > 0)
+    assert branch["phi_e"].max() == pytest.approx(0.3, abs=0.11)
+    assert any(line.startswith("# ") for line in lines)
+    assert (out / "results.json").is_file()
+    # A used directory is refused by name; resumed, the finished study gives the same results.
+    with pytest.raises(ValueError, match=str(out.name)):
+        growshell.run_study(scene, out)
+    again = growshell.run_study(scene, out, resume=True)
+    assert again["phi_branch"] == results["phi_branch"]
+
+
+def test_bad_input_raises_named_errors(model, scene, scratch):
+    x = model.reference_positions()
+    with pytest.raises(ValueError, match="entries; the model has"):
+        model.energy(x[:-3], PHI)
+    with pytest.raises(ValueError, match="not finite"):
+        model.gradient(np.full(x.size, np.nan), PHI)
+    with pytest.raises(ValueError, match="excess angle"):
+        model.hessian(x, math.inf)
+    with pytest.raises(ValueError, match="mesh.no_such_key"):
+        growshell.model_from_scene(scene, {"mesh.no_such_key": 3})
+    with pytest.raises(ValueError, match="thickness"):
+        growshell.model_from_scene(scene, {"thickness": -0.1})
+    with pytest.raises((ValueError, RuntimeError), match="missing.json"):
+        growshell.model_from_scene(scratch / "missing.json")
+    with pytest.raises(TypeError):
+        growshell.model_from_scene(scene, ["thickness", 0.1])
+    with pytest.raises(ValueError, match="resume and overwrite"):
+        growshell.run_study(scene, scratch / "x", resume=True, overwrite=True)
