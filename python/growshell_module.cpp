@@ -11,15 +11,21 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <vector>
 
+#include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/io/scene.hpp"
+#include "solvers/continuation/pseudo_arclength.hpp"
+#include "solvers/newton/newton_solver.hpp"
+#include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/scene_study.hpp"
 
 namespace py = pybind11;
@@ -93,6 +99,119 @@ class PythonModel {
     return model_->limit_positions(x);
   }
 
+  /// Six dofs that remove the rigid motions, on the mesh's mirror axes (states with the
+  /// mirror symmetry keep it), at state x.
+  std::vector<Eigen::Index> mirror_axis_pins(const Eigen::VectorXd& x) const {
+    check(x, 0.0);
+    const Eigen::MatrixX3d points =
+        Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
+    return mirror_axis_pinned_dofs(points, model_->sheet_vertices(), Eigen::Vector3d::Zero());
+  }
+
+  /// Tolerances relative to the scene: `tolerance` times the natural force Y h^3 / L (N).
+  double force_tolerance(double tolerance) const {
+    if (!(tolerance > 0.0 && std::isfinite(tolerance)))
+      throw std::invalid_argument("tolerance = " + std::to_string(tolerance) +
+                                  " must be finite and > 0 (relative to Y h^3 / L)");
+    return tolerance * model_->natural_force_scale();
+  }
+
+  /// Newton's method from x at phi_e with `pins` held (empty: mirror_axis_pins(x)).
+  py::dict minimize(const Eigen::VectorXd& x, double phi_e, std::vector<Eigen::Index> pins,
+                    double tolerance, int max_iterations) const {
+    check(x, phi_e);
+    if (pins.empty()) pins = mirror_axis_pins(x);
+    NewtonOptions options;
+    options.gradient_tolerance = force_tolerance(tolerance);
+    // The pattern's turn about the axis is nearly free on a mesh: also accept a Newton
+    // decrement below tolerance Y h^3 R^2 (J), as the studies do.
+    const double h = thickness();
+    options.decrement_tolerance = tolerance * scene_.material.youngs_modulus * h * h * h;
+    options.max_iterations = max_iterations;
+    NewtonResult r;
+    {
+      py::gil_scoped_release release;
+      ObjectiveAtParameter energy(*model_, phi_e);
+      r = NewtonSolver(options).minimize(energy, x, pins);
+    }
+    py::dict out;
+    out["x"] = r.x;
+    out["converged"] = r.converged();
+    out["energy"] = r.energy;
+    out["iterations"] = r.iterations;
+    out["message"] = r.message;
+    out["pins"] = pins;
+    return out;
+  }
+
+  /// Pseudo-arclength continuation from the equilibrium (x, phi_e) towards increasing
+  /// (direction > 0) or decreasing phi_e, up to phi_max / down to phi_min.
+  py::dict trace(const Eigen::VectorXd& x, double phi_e, int direction, double phi_min,
+                 double phi_max, std::vector<Eigen::Index> pins, double tolerance,
+                 double max_step, double min_step, int max_steps, const std::string& corrector,
+                 const std::function<void(double, int)>& progress) const {
+    check(x, phi_e);
+    if (direction != 1 && direction != -1)
+      throw std::invalid_argument("direction must be +1 or -1");
+    if (pins.empty()) pins = mirror_axis_pins(x);
+    ArclengthOptions o;
+    o.gradient_tolerance = force_tolerance(tolerance);
+    o.max_step = max_step;
+    o.min_step = min_step;
+    o.initial_step = std::max(min_step, max_step / 4);
+    o.parameter_min = phi_min;
+    o.parameter_max = phi_max;
+    o.max_steps = max_steps;
+    if (corrector == "chord")
+      o.corrector = ArclengthOptions::Corrector::Chord;
+    else if (corrector != "newton")
+      throw std::invalid_argument("corrector = '" + corrector + "': must be 'newton' or 'chord'");
+    std::vector<BranchSample> samples;
+    BranchTrace t;
+    {
+      py::gil_scoped_release release;
+      t = trace_branch(*model_, x, phi_e, direction, pins, o, [&](const BranchSample& s) {
+        samples.push_back(s);
+        if (progress) {
+          py::gil_scoped_acquire gil;
+          progress(s.parameter, s.negative_eigenvalues);
+        }
+      });
+    }
+    Eigen::VectorXd phi(samples.size()), arclength(samples.size());
+    Eigen::VectorXi negative(samples.size());
+    Eigen::MatrixXd states(static_cast<Eigen::Index>(samples.size()), model_->dimension());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      phi(k) = samples[i].parameter;
+      arclength(k) = samples[i].arclength;
+      negative(k) = samples[i].negative_eigenvalues;
+      states.row(k) = samples[i].x.transpose();
+    }
+    py::list special;
+    for (const SpecialPoint& sp : t.special_points) {
+      py::dict d;
+      d["kind"] = std::string(to_string(sp.kind));
+      d["phi_e"] = sp.parameter;
+      d["negative_before"] = sp.negative_before;
+      d["negative_after"] = sp.negative_after;
+      d["bracket_width"] = sp.bracket_width;
+      d["x"] = sp.x;
+      special.append(d);
+    }
+    py::dict out;
+    out["phi_e"] = phi;
+    out["arclength"] = arclength;
+    out["negative_eigenvalues"] = negative;
+    out["states"] = states;
+    out["special_points"] = special;
+    out["reached_bound"] = t.reached_bound;
+    out["message"] = t.message;
+    out["steps"] = t.steps;
+    out["factorizations"] = t.cost.factorizations;
+    return out;
+  }
+
  private:
   void check(const Eigen::VectorXd& x, double phi_e) const {
     if (x.size() != model_->dimension())
@@ -160,7 +279,14 @@ PYBIND11_MODULE(_growshell, m) {
       .def("gradient", &PythonModel::gradient, py::arg("x"), py::arg("phi_e"))
       .def("hessian_upper", &PythonModel::hessian_upper, py::arg("x"), py::arg("phi_e"))
       .def("energy_breakdown", &PythonModel::energy_breakdown, py::arg("x"), py::arg("phi_e"))
-      .def("limit_positions", &PythonModel::limit_positions, py::arg("x"));
+      .def("limit_positions", &PythonModel::limit_positions, py::arg("x"))
+      .def("mirror_axis_pins", &PythonModel::mirror_axis_pins, py::arg("x"))
+      .def("minimize", &PythonModel::minimize, py::arg("x"), py::arg("phi_e"), py::arg("pins"),
+           py::arg("tolerance"), py::arg("max_iterations"))
+      .def("trace", &PythonModel::trace, py::arg("x"), py::arg("phi_e"), py::arg("direction"),
+           py::arg("phi_min"), py::arg("phi_max"), py::arg("pins"), py::arg("tolerance"),
+           py::arg("max_step"), py::arg("min_step"), py::arg("max_steps"), py::arg("corrector"),
+           py::arg("progress"));
   m.def(
       "model_from_scene",
       [](const std::string& path, const std::map<std::string, std::string>& overrides) {

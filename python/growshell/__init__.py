@@ -101,6 +101,40 @@ class Model:
         return np.array(self._core.limit_positions(_state(x)))
 
 
+    def mirror_axis_pins(self, x):
+        """Six dofs that remove the rigid motions at state x, on the mesh's mirror axes, so
+        that a mirror-symmetric state stays so (the studies' pins)."""
+        return list(self._core.mirror_axis_pins(_state(x)))
+
+    def minimize(self, x, phi_e, pins=None, tolerance=1e-7, max_iterations=200):
+        """Newton's method (CHOLMOD) from x at phi_e, with the dofs `pins` held (default
+        mirror_axis_pins(x)), to a gradient below `tolerance` Y h^3 / L. Returns a dict: 'x'
+        (numpy), 'converged', 'energy' (J), 'iterations', 'message', 'pins'."""
+        r = dict(self._core.minimize(_state(x), float(phi_e), list(pins or []),
+                                     float(tolerance), int(max_iterations)))
+        r["x"] = np.array(r["x"])
+        return r
+
+    def trace(self, x, phi_e, phi_max, phi_min=0.0, direction=1, pins=None, tolerance=1e-6,
+              max_step=0.1, min_step=1e-6, max_steps=10000, corrector="newton", progress=None):
+        """Pseudo-arclength continuation from the equilibrium (x, phi_e) towards phi_max
+        (direction +1) or phi_min (-1), with stability (the Hessian's negative eigenvalue count,
+        from MUMPS' LDL^T) and its special points located. Returns a dict of numpy arrays
+        'phi_e', 'arclength', 'negative_eigenvalues', 'states' (one row per sample), and
+        'special_points' (dicts: kind 'fold' or 'branch point', phi_e, negative_before/after,
+        x), 'reached_bound', 'message', 'steps', 'factorizations'. `progress(phi_e, negative)`
+        is called at each sample. No branch switching: the trace follows the branch it starts
+        on (the studies switch onto the cones)."""
+        r = dict(self._core.trace(_state(x), float(phi_e), int(direction), float(phi_min),
+                                  float(phi_max), list(pins or []), float(tolerance),
+                                  float(max_step), float(min_step), int(max_steps), corrector,
+                                  progress))
+        for key in ("phi_e", "arclength", "negative_eigenvalues", "states"):
+            r[key] = np.array(r[key])
+        r["special_points"] = [dict(p, x=np.array(p["x"])) for p in r["special_points"]]
+        return r
+
+
 def model_from_scene(path, overrides=None):
     """The model of the scene file `path`, with `overrides` ({scene key: value}, as
     `growshell run --set`) applied. Raises ValueError naming a bad key or value."""
