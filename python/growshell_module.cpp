@@ -23,6 +23,8 @@
 #include "core/objective_at_parameter.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/io/scene.hpp"
+#include "libshell/mesh/ghost_layer.hpp"
+#include "python/sheet_thickness_field.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -41,20 +43,26 @@ Scene scene_with(const std::string& path, const std::map<std::string, std::strin
   return scene;
 }
 
-/// A ShellModel with the scene it was built from.
+/// A ShellModel with the scene it was built from (for a model built from arrays, the default
+/// scene with the arrays' material and centre thickness: what minimize's tolerances read).
 class PythonModel {
  public:
   explicit PythonModel(Scene scene)
       : scene_(std::move(scene)),
         model_(std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_))) {}
+  PythonModel(Scene scene, const TriangleMesh& mesh, ShellModelSettings settings)
+      : scene_(std::move(scene)),
+        model_(std::make_unique<ShellModel>(mesh, std::move(settings))),
+        from_scene_(false) {}
 
   Eigen::Index dimension() const { return model_->dimension(); }
   Eigen::Index num_elements() const { return model_->num_elements(); }
-  /// The thickness at the centre (m).
+  /// The thickness at the centre (m); for a model built from arrays, the largest.
   double thickness() const {
     return thickness_at_radius(scene_.thickness, 0.0, scene_.geometry.radius);
   }
-  std::string scene_json() const { return scene_to_json(scene_); }
+  /// The scene as JSON; empty for a model built from arrays.
+  std::string scene_json() const { return from_scene_ ? scene_to_json(scene_) : std::string(); }
   Eigen::VectorXd reference_positions() const { return model_->reference_positions(); }
 
   double energy(const Eigen::VectorXd& x, double phi_e) const {
@@ -227,7 +235,50 @@ class PythonModel {
 
   Scene scene_;
   std::unique_ptr<ShellModel> model_;
+  bool from_scene_ = true;
 };
+
+/// A model of the planar sheet (vertices V x 3, z = 0; faces F x 3, counter-clockwise), its
+/// ghost layer added, with thickness per vertex (V values), per face (F values) or one value.
+PythonModel model_from_arrays(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces,
+                              const Eigen::VectorXd& thickness, const std::string& thickness_on,
+                              double youngs_modulus, double poisson_ratio,
+                              const std::string& stretching_law, const Eigen::Vector2d& center,
+                              double smoothing_radius, int quadrature_degree) {
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertices.rows()))
+    throw std::invalid_argument("faces name vertices outside 0.." +
+                                std::to_string(vertices.rows() - 1));
+  Scene scene = default_scene();
+  ShellModelSettings settings;
+  settings.material.youngs_modulus = youngs_modulus;
+  settings.material.poisson_ratio = poisson_ratio;
+  if (stretching_law == "neo_hookean")
+    settings.material.stretching_law = StretchingLaw::kNeoHookean;
+  else if (stretching_law != "saint_venant_kirchhoff")
+    throw std::invalid_argument("stretching_law = '" + stretching_law +
+                                "': must be 'saint_venant_kirchhoff' or 'neo_hookean'");
+  validate_material(settings.material);
+  if (thickness_on == "constant") {
+    if (thickness.size() != 1 || !(std::isfinite(thickness(0)) && thickness(0) > 0.0))
+      throw std::invalid_argument("thickness must be one finite value > 0, or one per vertex or face");
+    settings.thickness = constant_thickness(thickness(0));
+  } else if (thickness_on == "vertex" || thickness_on == "face") {
+    settings.thickness = sheet_thickness_field(vertices, faces, thickness, thickness_on == "face");
+  } else {
+    throw std::invalid_argument("thickness_on = '" + thickness_on +
+                                "': must be 'constant', 'vertex' or 'face'");
+  }
+  if (!(smoothing_radius >= 0.0 && std::isfinite(smoothing_radius)))
+    throw std::invalid_argument("smoothing_radius must be finite and >= 0");
+  settings.growth.center = Eigen::Vector3d(center.x(), center.y(), 0.0);
+  settings.growth.smoothing_radius = smoothing_radius;
+  settings.quadrature_degree = quadrature_degree;
+  scene.material.youngs_modulus = youngs_modulus;
+  scene.material.poisson_ratio = poisson_ratio;
+  scene.thickness = ConstantThickness{thickness.maxCoeff()};
+  const TriangleMesh mesh = add_ghost_layer(TriangleMesh{vertices, faces});
+  return PythonModel(std::move(scene), mesh, std::move(settings));
+}
 
 /// Runs the study the scene names into `out` (the scene's output.directory if empty), as
 /// `growshell run` does without drawing the figure. Returns (completed, end). The GIL is
@@ -293,6 +344,10 @@ PYBIND11_MODULE(_growshell, m) {
         return PythonModel(growshell::scene_with(path, overrides));
       },
       py::arg("path"), py::arg("overrides"));
+  m.def("model_from_arrays", &growshell::model_from_arrays, py::arg("vertices"), py::arg("faces"),
+        py::arg("thickness"), py::arg("thickness_on"), py::arg("youngs_modulus"),
+        py::arg("poisson_ratio"), py::arg("stretching_law"), py::arg("center"),
+        py::arg("smoothing_radius"), py::arg("quadrature_degree"));
   m.def(
       "scene_json",
       [](const std::string& path, const std::map<std::string, std::string>& overrides) {

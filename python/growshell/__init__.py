@@ -22,7 +22,7 @@ import numpy as np
 
 from . import _growshell
 
-__all__ = ["Model", "model_from_scene", "run_study", "StudyResults"]
+__all__ = ["Model", "model_from_scene", "model_from_arrays", "run_study", "StudyResults"]
 
 
 def _overrides(overrides):
@@ -61,13 +61,15 @@ class Model:
 
     @property
     def thickness(self):
-        """The thickness at the centre, m."""
+        """The thickness at the centre, m (of a model from arrays: the largest)."""
         return self._core.thickness
 
     @property
     def scene(self):
-        """The scene, every key, as a dict (the model was built from it)."""
-        return json.loads(self._core.scene_json())
+        """The scene, every key, as a dict (the model was built from it); None for a model
+        built from arrays."""
+        text = self._core.scene_json()
+        return json.loads(text) if text else None
 
     def reference_positions(self):
         """The flat reference sheet's control points as a state x (numpy array, N)."""
@@ -139,6 +141,43 @@ def model_from_scene(path, overrides=None):
     """The model of the scene file `path`, with `overrides` ({scene key: value}, as
     `growshell run --set`) applied. Raises ValueError naming a bad key or value."""
     return Model(_growshell.model_from_scene(os.fspath(path), _overrides(overrides)))
+
+
+def model_from_arrays(vertices, faces, thickness, youngs_modulus=1e4, poisson_ratio=0.3,
+                      stretching_law="saint_venant_kirchhoff", center=(0.0, 0.0),
+                      smoothing_radius=0.0, quadrature_degree=2):
+    """The model of a planar sheet given as arrays: `vertices` (V, 3) with z = 0 or (V, 2), m;
+    `faces` (F, 3) vertex indices, counter-clockwise seen from +z. Its ghost layer is added
+    (the control points beyond the boundary that make every face an element), so the state
+    has more than 3 V entries; the sheet's vertices keep their indices and come first.
+    `thickness` (m): one number, or one per vertex (linear on each face), or one per face
+    (constant on each). Material: Young's modulus (Pa), Poisson ratio, stretching law
+    ('saint_venant_kirchhoff' or 'neo_hookean'). Growth: circumferential about `center`
+    (x, y), with the excess angle spread over `smoothing_radius` (m; 0: a point defect).
+    Raises ValueError naming what is wrong with the arrays."""
+    v = np.asarray(vertices, dtype=np.float64)
+    if v.ndim != 2 or v.shape[1] not in (2, 3):
+        raise ValueError(f"vertices must be an array of shape (V, 2) or (V, 3), not {v.shape}")
+    if v.shape[1] == 2:
+        v = np.column_stack([v, np.zeros(len(v))])
+    f = np.asarray(faces)
+    if f.ndim != 2 or f.shape[1] != 3 or not np.issubdtype(f.dtype, np.integer):
+        raise ValueError(f"faces must be an integer array of shape (F, 3), not {f.shape} {f.dtype}")
+    t = np.atleast_1d(np.asarray(thickness, dtype=np.float64))
+    if t.size == 1:
+        on = "constant"
+    elif t.size == len(v):
+        on = "vertex"
+    elif t.size == len(f):
+        on = "face"
+    else:
+        raise ValueError(f"thickness has {t.size} values: give one, one per vertex ({len(v)}) "
+                         f"or one per face ({len(f)})")
+    return Model(_growshell.model_from_arrays(
+        np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int32), t, on,
+        float(youngs_modulus), float(poisson_ratio), stretching_law,
+        np.asarray(center, dtype=np.float64).reshape(2), float(smoothing_radius),
+        int(quadrature_degree)))
 
 
 class StudyResults(dict):

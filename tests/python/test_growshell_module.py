@@ -6,6 +6,8 @@ program, GROWSHELL_TEST_OUT a scratch directory.
   bits (1e-13 relative: the same code, only copied);
 - the gradient and the Hessian agree with central differences of the energy and the gradient
   (relative 1e-6 at step 1e-6 m on a state of the coarse cone mesh);
+- a model from numpy arrays (a Delaunay disc) with thickness as one value, per vertex and per
+  face;
 - Newton's method and continuation from Python find the study's cone (E_b-hat to 1e-6);
 - a small cone_branch study run from Python: the flat sheet's first branch point at
   c2 h^2 / R^2 (physics.md: c2 = 10.59) within this coarse mesh's 3 %, its branch's columns as
@@ -168,6 +170,71 @@ def test_newton_and_continuation_find_the_studys_cone(model, study):
         assert model.energy_breakdown(at["x"], phi)["eb_hat"] == pytest.approx(eb_hat, rel=1e-6)
         checked += 1
     assert checked >= 2
+
+
+def polar_disc():
+    """A disc of radius 1 triangulated from 6 rings of points (scipy's Delaunay), counter-
+    clockwise."""
+    from scipy.spatial import Delaunay
+    points = [(0.0, 0.0)]
+    for k in range(1, 7):
+        n = 6 * k
+        points += [(k / 6 * math.cos(2 * math.pi * j / n), k / 6 * math.sin(2 * math.pi * j / n))
+                   for j in range(n)]
+    points = np.array(points)
+    faces = Delaunay(points).simplices
+    a, b, c = points[faces[:, 0]], points[faces[:, 1]], points[faces[:, 2]]
+    clockwise = (b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0] < 0
+    faces[clockwise] = faces[clockwise][:, [0, 2, 1]]
+    return points, faces
+
+
+def test_model_from_arrays():
+    """A model from numpy arrays: its ghost layer added, the flat sheet stress-free at
+    phi_e = 0 and stretched by growth, its gradient the energy's slope; thickness as one
+    value, per vertex or per face gives the same model when the values agree, and the
+    energies scale as h (stretching) and h^3 (bending); a varying thickness gives energies
+    between those of its smallest and largest value."""
+    points, faces = polar_disc()
+    h = 0.04
+    model = growshell.model_from_arrays(points, faces, h)
+    assert model.dimension > 3 * len(points)  # the ghost layer
+    assert model.num_elements == len(faces)
+    assert model.scene is None
+    x = model.reference_positions()
+    assert np.allclose(x[:3 * len(points)].reshape(-1, 3)[:, :2], points, atol=1e-14)
+    assert model.energy(x, 0.0) == pytest.approx(0.0, abs=1e-20)
+    assert model.energy(x, PHI) > 0.0
+    y = x + 1e-3 * np.sin(np.arange(x.size))
+    v = np.random.default_rng(3).standard_normal(x.size)
+    v /= np.linalg.norm(v)
+    slope = (model.energy(y + 1e-6 * v, PHI) - model.energy(y - 1e-6 * v, PHI)) / 2e-6
+    assert slope == pytest.approx(model.gradient(y, PHI) @ v, rel=1e-6)
+    reference = model.energy(y, PHI)
+    per_vertex = growshell.model_from_arrays(points, faces, np.full(len(points), h))
+    per_face = growshell.model_from_arrays(points, faces, np.full(len(faces), h))
+    assert per_vertex.energy(y, PHI) == pytest.approx(reference, rel=1e-13)
+    assert per_face.energy(y, PHI) == pytest.approx(reference, rel=1e-13)
+    thick = growshell.model_from_arrays(points, faces, np.full(len(points), 2 * h))
+    a, b = model.energy_breakdown(y, PHI), thick.energy_breakdown(y, PHI)
+    assert b["stretching"] / a["stretching"] == pytest.approx(2.0, rel=1e-12)
+    assert b["bending"] / a["bending"] == pytest.approx(8.0, rel=1e-12)
+    # Thickness from h at x = -1 to 2 h at x = +1 (linear: exact per vertex), and per face a
+    # checkerboard of h and 2 h.
+    for values in (h * (1.5 + 0.5 * points[:, 0]), np.where(np.arange(len(faces)) % 2, h, 2 * h)):
+        varying = growshell.model_from_arrays(points, faces, values).energy_breakdown(y, PHI)
+        for part in ("stretching", "bending"):
+            assert a[part] < varying[part] < b[part]
+    with pytest.raises(ValueError, match="faces name vertices"):
+        growshell.model_from_arrays(points, faces + len(points), h)
+    with pytest.raises(ValueError, match="one per vertex"):
+        growshell.model_from_arrays(points, faces, [h, h])
+    with pytest.raises(ValueError, match="thickness"):
+        growshell.model_from_arrays(points, faces, np.full(len(points), -h))
+    with pytest.raises(ValueError, match="stretching_law"):
+        growshell.model_from_arrays(points, faces, h, stretching_law="hooke")
+    with pytest.raises(ValueError, match="shape"):
+        growshell.model_from_arrays(points[:, :1], faces, h)
 
 
 def test_bad_input_raises_named_errors(model, scene, scratch):
