@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """A cone_branch study from Python: the two-fold e-cone traced from the flat sheet, its key
-values, and E_b-hat against phi_e from its branch as numpy arrays (drawn if matplotlib is
-there).
+values, its branch as numpy arrays, and its bifurcation diagram (growshell.plots, if
+matplotlib is there).
 
 usage: PYTHONPATH=build/python examples/python/run_cone_study.py [OUT_DIR]
 """
@@ -20,17 +20,15 @@ print(f"completed: {results.completed} ({results.end})")
 print(f"first branch point phi_e = {results['phi_branch']:.6f}, "
       f"E_b-hat max {results['eb_hat_max']:.4f} at phi_e = {results['phi_max']:.4f}")
 branch = results.branch()
+print(f"{branch['phi_e'].size} samples, E_b-hat from {branch['Eb_hat'][0]:.4g} to "
+      f"{branch['Eb_hat'][-1]:.4g}")
 try:
     import matplotlib
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import growshell.plots
 except ImportError:
     sys.exit(0)
-figure, axes = plt.subplots(figsize=(5, 3.5))
-axes.plot(branch["phi_e"], branch["Eb_hat"], "-")
-axes.set_xlabel(r"$\varphi_e$ (rad)")
-axes.set_ylabel(r"$\hat E_b$")
-axes.set_title("two-fold e-cone, h = 0.04")
-figure.tight_layout()
-figure.savefig(f"{out}/eb_hat_python.png", dpi=120)
+axes = growshell.plots.study_diagram(results)  # stable solid, unstable dashed, events marked
+axes.figure.tight_layout()
+axes.figure.savefig(f"{out}/eb_hat_python.png", dpi=120)
 print(f"wrote {out}/eb_hat_python.png")

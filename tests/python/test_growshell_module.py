@@ -13,6 +13,8 @@ program, GROWSHELL_TEST_OUT a scratch directory.
   c2 h^2 / R^2 (physics.md: c2 = 10.59) within this coarse mesh's 3 %, its branch's columns as
   numpy arrays, every progress line delivered, a used directory refused, and a resume of the
   finished study returns the same results;
+- the bifurcation diagram (growshell.plots) draws stable parts solid, unstable ones dashed,
+  and labels the special points;
 - bad input raises ValueError (or FileNotFoundError-like RuntimeError) with the library's
   message naming what is wrong.
 """
@@ -235,6 +237,25 @@ def test_model_from_arrays():
         growshell.model_from_arrays(points, faces, h, stretching_law="hooke")
     with pytest.raises(ValueError, match="shape"):
         growshell.model_from_arrays(points[:, :1], faces, h)
+
+
+def test_bifurcation_diagram_draws_stable_solid_and_unstable_dashed(study, scratch):
+    plt = pytest.importorskip("matplotlib.pyplot")
+    import growshell.plots
+    ax = growshell.plots.bifurcation_diagram([0, 1, 2, 3], [0, 1, 0.5, 2], [0, 0, 1, 1],
+                                             [{"kind": "fold", "phi_e": 1.5}])
+    styles = [line.get_linestyle() for line in ax.lines]
+    assert "-" in styles and "--" in styles
+    assert any("fold 1.5000" in text.get_text() for text in ax.texts)
+    assert ax.get_xlabel() == r"$\varphi_e$ (rad)"
+    with pytest.raises(ValueError, match="differ in length"):
+        growshell.plots.bifurcation_diagram([0, 1], [0], [0, 0])
+    _, results, _ = study
+    ax = growshell.plots.study_diagram(results)
+    assert any("branch_point" in text.get_text() for text in ax.texts)
+    ax.figure.savefig(scratch / "study_diagram.png")
+    assert (scratch / "study_diagram.png").stat().st_size > 1000
+    plt.close("all")
 
 
 def test_bad_input_raises_named_errors(model, scene, scratch):
