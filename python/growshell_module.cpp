@@ -287,10 +287,9 @@ std::tuple<bool, std::string> run_study(const std::string& path,
                                         const std::map<std::string, std::string>& overrides,
                                         const std::string& out, const std::string& existing,
                                         const std::function<void(const std::string&)>& progress) {
-  Scene scene = read_scene(path);
-  for (const auto& [key, value] : overrides) apply_override(scene, key, value);
-  if (!out.empty()) apply_override(scene, "output.directory", out);
-  validate_scene(scene);
+  std::map<std::string, std::string> keys = overrides;
+  if (!out.empty()) keys["output.directory"] = out;
+  const Scene scene = scene_with(path, keys);
   ExistingOutput mode = ExistingOutput::Refuse;
   if (existing == "resume")
     mode = ExistingOutput::Resume;

@@ -21,6 +21,12 @@ struct SheetLocator {
   int columns = 1, rows = 1;
   std::vector<std::vector<int>> cells;
 
+  /// The grid column (axis 0) or row (axis 1) of a coordinate, clamped into the grid.
+  int cell_of(double v, int axis) const {
+    const int n = axis == 0 ? columns : rows;
+    return std::clamp(static_cast<int>(std::floor((v - lower(axis)) / cell(axis))), 0, n - 1);
+  }
+
   Eigen::Vector3d barycentric(int f, const Eigen::Vector2d& p) const {
     const Eigen::Vector2d a = points.row(faces(f, 0)), b = points.row(faces(f, 1)),
                           c = points.row(faces(f, 2));
@@ -39,8 +45,7 @@ struct SheetLocator {
 
   double operator()(const Eigen::Vector3d& x) const {
     const Eigen::Vector2d p(x.x(), x.y());
-    const int i = std::clamp(static_cast<int>(std::floor((p.x() - lower.x()) / cell.x())), 0, columns - 1);
-    const int j = std::clamp(static_cast<int>(std::floor((p.y() - lower.y()) / cell.y())), 0, rows - 1);
+    const int i = cell_of(p.x(), 0), j = cell_of(p.y(), 1);
     int best = -1;
     double best_outside = std::numeric_limits<double>::infinity();
     Eigen::Vector3d best_w;
@@ -97,12 +102,9 @@ ThicknessField sheet_thickness_field(const Eigen::MatrixX3d& vertices, const Eig
       lo = lo.cwiseMin(s->points.row(faces(f, c)).transpose());
       hi = hi.cwiseMax(s->points.row(faces(f, c)).transpose());
     }
-    const int i0 = std::clamp(static_cast<int>(std::floor((lo.x() - s->lower.x()) / s->cell.x())), 0, n - 1);
-    const int i1 = std::clamp(static_cast<int>(std::floor((hi.x() - s->lower.x()) / s->cell.x())), 0, n - 1);
-    const int j0 = std::clamp(static_cast<int>(std::floor((lo.y() - s->lower.y()) / s->cell.y())), 0, n - 1);
-    const int j1 = std::clamp(static_cast<int>(std::floor((hi.y() - s->lower.y()) / s->cell.y())), 0, n - 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) s->cells[static_cast<std::size_t>(j * n + i)].push_back(f);
+    for (int j = s->cell_of(lo.y(), 1); j <= s->cell_of(hi.y(), 1); ++j)
+      for (int i = s->cell_of(lo.x(), 0); i <= s->cell_of(hi.x(), 0); ++i)
+        s->cells[static_cast<std::size_t>(j * n + i)].push_back(f);
   }
   return [s](const Eigen::Vector3d& x) { return (*s)(x); };
 }

@@ -118,27 +118,26 @@ class BranchSolver {
     double lambda = lp;
     const bool use_chord = options_.corrector == ArclengthOptions::Corrector::Chord && factorized_;
     int chord_iterations = 0;
+    bool chord_converged = false;
     if (use_chord) {
-      if (chord(xp, lp, tx, tl, x, lambda, chord_iterations)) {
-        if (!analyse) {
-          sample.x = x;
-          sample.parameter = lambda;
-          sample.corrector_iterations = chord_iterations;
-          return true;
-        }
-        if (!linearize(x, lambda) || fixed_.free_inf_norm(gradient_) > options_.gradient_tolerance)
-          return false;
-        step_factor_ = factor(options_.target_chord_iterations, chord_iterations);
-        return converged(x, lambda, chord_iterations, tx, tl, sample, true);
+      chord_converged = chord(xp, lp, tx, tl, x, lambda, chord_iterations);
+      if (chord_converged && !analyse) {
+        sample.x = x;
+        sample.parameter = lambda;
+        sample.corrector_iterations = chord_iterations;
+        return true;
       }
-      ++cost_.chord_fallbacks;
+      if (!chord_converged) ++cost_.chord_fallbacks;
     }
+    // Newton from the predictor or from the chord's best iterate; a converged chord's point
+    // converges at once, and is factorised here for its tangent and stability index.
     for (int it = 0; it <= options_.max_corrector_iterations; ++it) {
       if (!linearize(x, lambda)) return false;
       const double residual = fixed_.free_inf_norm(gradient_);
       if (residual <= options_.gradient_tolerance) {
         // After a chord that stopped contracting, its iterations count as one of Newton's.
-        step_factor_ = factor(options_.target_iterations, use_chord ? it + 1 : it);
+        step_factor_ = chord_converged ? factor(options_.target_chord_iterations, chord_iterations)
+                                       : factor(options_.target_iterations, use_chord ? it + 1 : it);
         return converged(x, lambda, chord_iterations + it, tx, tl, sample, analyse);
       }
       if (it == options_.max_corrector_iterations) return false;
