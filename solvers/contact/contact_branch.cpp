@@ -44,6 +44,8 @@ void validate(const ContactBranchOptions& o) {
         "ContactBranchOptions::violation_tolerance must be in [0, contact_distance)");
   if (!(o.repin_above_condition >= 0.0))
     throw std::invalid_argument("ContactBranchOptions::repin_above_condition must be >= 0");
+  if (o.start_residual_backtracks < 0)
+    throw std::invalid_argument("ContactBranchOptions::start_residual_backtracks must be >= 0");
   if (o.steps_per_segment < 1)
     throw std::invalid_argument("ContactBranchOptions::steps_per_segment must be >= 1");
 }
@@ -158,6 +160,8 @@ ContactBranchTrace trace_contact_branch(
   // converge on its rebuilt pair set is retried from, with a shorter step and a wider margin.
   BranchSample fallback;
   bool have_fallback = false;
+  // This segment's start failed before and is corrected with halved updates.
+  bool safeguarded = false;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -181,6 +185,13 @@ ContactBranchTrace trace_contact_branch(
       segment_options.stability_index = [&options, &family](const BranchSample& s) {
         return options.stability_index(family, s);
       };
+    if (safeguarded) {
+      // Halved updates converge from there, but slowly while the iterates cross pieces of
+      // the penalty's Hessian: twice the iterations.
+      segment_options.max_residual_backtracks =
+          std::max(arc.max_residual_backtracks, options.start_residual_backtracks);
+      segment_options.max_corrector_iterations = 2 * arc.max_corrector_iterations;
+    }
     segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
     const int segment = out.cost.segments++;
@@ -279,6 +290,7 @@ ContactBranchTrace trace_contact_branch(
     }
     retries = 0;
     margin = options.candidate_margin;
+    if (samples_in_segment > 0) safeguarded = false;
     out.cost.continuation += trace.cost;
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
@@ -296,7 +308,14 @@ ContactBranchTrace trace_contact_branch(
         start_direction_parameter = fallback.tangent_parameter;
         step = std::max(0.5 * step, arc.min_step);
         margin *= 2.0;
-        have_fallback = false;  // one step back only; a second failure ends the trace
+        have_fallback = false;  // one step back only
+        continue;
+      }
+      if (!safeguarded && options.start_residual_backtracks > arc.max_residual_backtracks) {
+        // The same start once more, with Newton's updates halved where they raise the
+        // residual; a second failure ends the trace.
+        safeguarded = true;
+        ++out.cost.safeguarded_starts;
         continue;
       }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +

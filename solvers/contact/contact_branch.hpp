@@ -61,6 +61,17 @@ struct ContactBranchOptions {
   /// ends the segment at the previous sample, which is retried with a rebuilt set (>= 0).
   double violation_tolerance = 0.0;
   ContactGapOptions gap;
+  /// A segment's start is the previous segment's last sample, an equilibrium on the previous
+  /// pair set. The set keeps one triangle per proxy vertex, the nearest at the set's state;
+  /// where a vertex's nearest triangle has changed since, the rebuilt set's force on it jumps
+  /// (by 0.26 and 1.2 N on the ctest's coarse mesh, where the tolerance is 6e-7 N), and
+  /// Newton's full updates on the penalty's piecewise Hessian can diverge from there. A start
+  /// that does not converge, even one sample back, is corrected once more with updates halved
+  /// where they raise the residual tenfold (ArclengthOptions::max_residual_backtracks = this)
+  /// and twice max_corrector_iterations, for that segment, before the trace ends. 0: the trace
+  /// ends at once. Only starts that would otherwise end the trace are retried, so a trace that
+  /// never meets one is the same with or without it.
+  int start_residual_backtracks = 10;
   /// If set (a subspace of the model's unknowns), the branch is traced in it
   /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it
   /// follows a symmetric branch through the branch points where it loses stability to
@@ -106,6 +117,8 @@ struct ContactBranchCost {
   int segments = 0;
   int rebuilds_after_violation = 0;
   int repinnings = 0;  ///< segments that chose new rigid-motion pins (repin_above_condition)
+  /// Segment starts corrected again with halved updates (start_residual_backtracks).
+  int safeguarded_starts = 0;
 };
 
 /// Result of trace_contact_branch. `last` is always the last converged sample (the start if

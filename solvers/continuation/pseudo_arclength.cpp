@@ -149,8 +149,10 @@ class BranchSolver {
       const double denominator = tl - weight_ * tx.dot(b);
       if (!(std::abs(denominator) > 0.0)) return false;
       const double dl = (weight_ * tx.dot(a) - c) / denominator;
-      x -= a + dl * b;
-      lambda += dl;
+      const Eigen::VectorXd dx = a + dl * b;
+      const double t = update_fraction(x, lambda, dx, dl);
+      x -= t * dx;
+      lambda += t * dl;
       if (!x.allFinite() || !std::isfinite(lambda)) return false;
     }
     return false;
@@ -211,6 +213,23 @@ class BranchSolver {
     if (!std::isfinite(e) || !gradient_.allFinite()) return std::numeric_limits<double>::quiet_NaN();
     fixed_.zero_fixed(gradient_);
     return fixed_.free_inf_norm(gradient_);
+  }
+
+  /// The fraction t of the Newton update (x, lambda) -> (x - t dx, lambda + t dl) to take:
+  /// 1, or with max_residual_backtracks > 0 the first of 1, 1/2, 1/4, ... at which the free
+  /// gradient's 2-norm is below residual_growth_limit times its value at (x, lambda) (2^-max
+  /// if none is). Uses gradient_ of the linearisation at (x, lambda) and overwrites it.
+  double update_fraction(const Eigen::VectorXd& x, double lambda, const Eigen::VectorXd& dx,
+                         double dl) {
+    if (options_.max_residual_backtracks <= 0) return 1.0;
+    const double bound = options_.residual_growth_limit * gradient_.norm();
+    double t = 1.0;
+    for (int k = 0; k < options_.max_residual_backtracks; ++k) {
+      if (residual_at(x - t * dx, lambda + t * dl) >= 0.0 && gradient_.norm() <= bound) break;
+      t *= 0.5;
+      ++cost_.residual_backtracks;
+    }
+    return t;
   }
 
   /// Chord iterations on the bordered system with the last factorisation (and its
@@ -335,6 +354,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     throw std::invalid_argument("ArclengthOptions: need 0 < min_step <= initial_step <= max_step");
   if (!(options.gradient_tolerance > 0.0))
     throw std::invalid_argument("ArclengthOptions: gradient_tolerance must be > 0");
+  if (!(options.residual_growth_limit >= 1.0))
+    throw std::invalid_argument("ArclengthOptions: residual_growth_limit must be >= 1");
   BranchTrace out;
   // The caller's callbacks and the event test functions, timed.
   const auto sample_done = [&](const BranchSample& s) {

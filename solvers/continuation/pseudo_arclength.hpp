@@ -41,6 +41,20 @@ struct ArclengthOptions {
   int target_chord_iterations = 10;
   int max_chord_iterations = 25;
   double chord_contraction = 0.7;
+  /// Safeguard of Newton's corrector: an update that raises the 2-norm of the free gradient
+  /// above `residual_growth_limit` times its value is halved, up to this many times, each
+  /// trial costing a gradient-only assembly (the update is Newton's on the bordered system,
+  /// so it is a descent direction of that norm, and a halved update stays on the corrector's
+  /// hyperplane). 0 (default): full updates, as plain Newton. Where the Hessian is only
+  /// piecewise smooth (a contact penalty whose pairs enter, or whose nearest triangle
+  /// changes, inside a step) a full update can overshoot into a region where Newton diverges.
+  int max_residual_backtracks = 0;
+  /// The growth of the residual's 2-norm that an update may cause before it is halved (>= 1).
+  /// Newton's iterates converge quadratically without decreasing that norm monotonically
+  /// (near the contact penalty's stiff pairs the first updates of a converging corrector raise
+  /// it by up to 3x), so a strictly monotone test would halve good updates; the divergence it
+  /// guards against raises it a hundredfold per update.
+  double residual_growth_limit = 10.0;
   double max_tangent_angle = 0.3;  ///< radians between successive tangents
   /// Steps no longer than this skip the tangent-angle test (a converged corrector suffices).
   /// Where the tangent jumps by a finite angle over an arbitrarily short step (a Hessian that
@@ -126,6 +140,8 @@ struct TraceCost {
   int gradient_evaluations = 0;
   /// Chord correctors that stopped contracting and went on by Newton.
   int chord_fallbacks = 0;
+  /// Halvings of Newton updates (ArclengthOptions::max_residual_backtracks).
+  int residual_backtracks = 0;
   double assembly_seconds = 0.0;  ///< family.evaluate (the chord's gradients too) + dg/dlambda
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
@@ -144,6 +160,7 @@ struct TraceCost {
     solves += other.solves;
     gradient_evaluations += other.gradient_evaluations;
     chord_fallbacks += other.chord_fallbacks;
+    residual_backtracks += other.residual_backtracks;
     assembly_seconds += other.assembly_seconds;
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;

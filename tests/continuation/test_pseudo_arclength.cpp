@@ -284,6 +284,63 @@ TEST(PseudoArclength, ChordTraceStartedAgainFromASampleRepeatsTheRest) {
   }
 }
 
+/// E(x; lambda) = x atan(x) - ln(1 + x^2) / 2 - lambda x: g = atan(x) - lambda, H = 1 / (1 + x^2).
+/// The branch is x = tan(lambda). Newton on atan diverges from |x| > 1.39 (each update
+/// overshoots to a larger |x| of the other sign), the textbook case for a safeguarded update.
+class ArctanFamily : public ParametrizedObjective {
+ public:
+  Eigen::Index dimension() const override { return 1; }
+  Eigen::SparseMatrix<double> hessian_pattern() const override {
+    Eigen::SparseMatrix<double> H(1, 1);
+    H.insert(0, 0) = 0.0;
+    H.makeCompressed();
+    return H;
+  }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* H) const override {
+    const double y = x(0);
+    if (g) *g = Eigen::VectorXd::Constant(1, std::atan(y) - lambda);
+    if (H) H->coeffRef(0, 0) = 1.0 / (1.0 + y * y);
+    return y * std::atan(y) - 0.5 * std::log1p(y * y) - lambda * y;
+  }
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>&,
+                                                double) const override {
+    return Eigen::VectorXd::Constant(1, -1.0);
+  }
+};
+
+TEST(PseudoArclength, HalvedNewtonUpdatesConvergeWhereFullOnesDiverge) {
+  const ArctanFamily family;
+  ArclengthOptions o = toy_options();
+  o.parameter_min = -1.0;
+  o.parameter_max = 1.0;
+  // Started at x = 3, lambda = 0 (the equilibrium is x = 0): full updates go 3 -> -9.5 -> 124 ...
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 3.0);
+  const Eigen::VectorXd along_state = Eigen::VectorXd::Zero(1);
+  const BranchTrace plain = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o);
+  EXPECT_FALSE(plain.start_converged);
+  EXPECT_EQ(plain.cost.residual_backtracks, 0);
+
+  // Newton's atan iterates raise |g| only slowly (it is bounded by pi/2), so the updates are
+  // held to a monotone residual here; the default growth limit guards against blow-ups only.
+  o.max_residual_backtracks = 10;
+  o.residual_growth_limit = 1.0;
+  std::vector<BranchSample> samples;
+  const BranchTrace safe = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o,
+                                              [&](const BranchSample& s) { samples.push_back(s); });
+  ASSERT_TRUE(safe.start_converged) << safe.message;
+  EXPECT_GT(safe.cost.residual_backtracks, 0);
+  EXPECT_TRUE(safe.reached_bound) << safe.message;
+  ASSERT_GT(samples.size(), 5u);
+  EXPECT_NEAR(samples.front().parameter, 0.0, 1e-14);  // corrected at fixed lambda
+  EXPECT_NEAR(samples.front().x(0), 0.0, 1e-12);
+  for (const BranchSample& s : samples) {
+    EXPECT_NEAR(s.x(0), std::tan(s.parameter), 1e-10) << "lambda = " << s.parameter;
+    EXPECT_EQ(s.negative_eigenvalues, 0);
+  }
+  EXPECT_NEAR(samples.back().parameter, 1.0, 0.2);
+}
+
 // ArclengthOptions::stability_index replaces the traced Hessian's count (as when tracing in a
 // symmetric subspace, where the index is the full Hessian's): special points are where it
 // changes, located as precisely, and the traced Hessian's own change is not one.
