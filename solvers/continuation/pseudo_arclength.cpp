@@ -354,6 +354,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     throw std::invalid_argument("ArclengthOptions: need 0 < min_step <= initial_step <= max_step");
   if (!(options.gradient_tolerance > 0.0))
     throw std::invalid_argument("ArclengthOptions: gradient_tolerance must be > 0");
+  if (options.max_residual_backtracks < 0)
+    throw std::invalid_argument("ArclengthOptions: max_residual_backtracks must be >= 0");
   if (!(options.residual_growth_limit >= 1.0))
     throw std::invalid_argument("ArclengthOptions: residual_growth_limit must be >= 1");
   BranchTrace out;

@@ -339,6 +339,12 @@ TEST(PseudoArclength, HalvedNewtonUpdatesConvergeWhereFullOnesDiverge) {
     EXPECT_EQ(s.negative_eigenvalues, 0);
   }
   EXPECT_NEAR(samples.back().parameter, 1.0, 0.2);
+
+  o.max_residual_backtracks = -1;
+  EXPECT_THROW(trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o), std::invalid_argument);
+  o.max_residual_backtracks = 10;
+  o.residual_growth_limit = 0.5;
+  EXPECT_THROW(trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o), std::invalid_argument);
 }
 
 // ArclengthOptions::stability_index replaces the traced Hessian's count (as when tracing in a
