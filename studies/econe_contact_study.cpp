@@ -30,6 +30,7 @@
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
+#include "studies/econe_stage_record.hpp"
 #include "studies/ground_state_exchange.hpp"
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
@@ -114,6 +115,8 @@ class EconeContactRun {
   void record_special(const char* branch, BranchRecord& record, const SpecialPoint& sp);
   void summarize(const EconeBranchResult& traced);
   void trace_turned();
+  EconeStageRecord::Turned trace_turned_branch(double phi0);
+  void measure_turned(EconeTurnedBranch turned);
   void check_hard_contact_points();
   void trace_compared_modes();
   void wind_up();
@@ -152,14 +155,37 @@ class EconeContactRun {
     Eigen::VectorXd x;
     double phi = -std::numeric_limits<double>::infinity();
     double energy = 0.0;  ///< E_s + E_b + P
+    std::string state;    ///< its saved state, relative to the study directory
   };
   TopSample top_skewed_, top_turned_;
-  void keep_if_top(TopSample& top, const ContactBranchSample& s, double defect) const {
+  /// Keeps the sample just recorded in `branch` (its state the record's last) if it is the
+  /// highest stable one that breaks S4 so far.
+  void keep_if_top(TopSample& top, const ContactBranchSample& s, double defect,
+                   const BranchRecord& branch) const {
     if (s.sample.negative_eigenvalues == 0 && breaks_s4(defect, scene_.study.symmetry_threshold) &&
         s.sample.parameter > top.phi)
       top = {s.sample.x, s.sample.parameter,
-             s.stretching_energy + s.bending_energy + s.penalty_energy};
+             s.stretching_energy + s.bending_energy + s.penalty_energy,
+             fs::path(branch.directory()).filename().string() + "/" + branch.last_state()};
   }
+  /// The top sample as the stage record keeps it, and back (its state read from disk).
+  static std::optional<EconeTopSample> recorded_top(const TopSample& top) {
+    if (top.x.size() == 0) return std::nullopt;
+    return EconeTopSample{top.state, top.phi, top.energy};
+  }
+  TopSample restored_top(const std::optional<EconeTopSample>& top) const {
+    if (!top) return {};
+    const BranchSample s =
+        load_branch_state(dir_ + "/" + top->state, model_->dimension(), fingerprint_);
+    return {s.x, top->phi_e, top->energy, top->state};
+  }
+  /// Stages 2-4 traced, or taken from the stage record of a resumed study.
+  EconeBranchResult contact_branches();
+  std::string stage_record_path() const { return dir_ + "/stages.json"; }
+  /// What this run's stages 2-6 found so far (written to stage_record_path() after each), and
+  /// what a resumed study's record holds for the same scene and start (empty otherwise).
+  EconeStageRecord stages_;
+  std::optional<EconeStageRecord> recorded_;
   /// The orientation check's lowest relaxed state that breaks S4 (empty if none): the start of
   /// the turned branch.
   Eigen::VectorXd turned_start_;
@@ -574,14 +600,110 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   r.end = !r.completed ? end : note.empty() ? "completed" : "completed (" + note + ")";
 }
 
+/// Stages 2-4: the symmetric branch with contact, the skewed search and the skewed branch
+/// (trace_econe_branches), recorded in DIR/symmetric and DIR/skewed, and what they found in
+/// the stage record; a resumed study whose record holds them takes them from there.
+EconeBranchResult EconeContactRun::contact_branches() {
+  // Taken from the record only with the branch records it describes (not removed by hand).
+  if (recorded_ && recorded_->contact_branches && BranchRecord::exists(dir_ + "/symmetric") &&
+      BranchRecord::exists(dir_ + "/skewed")) {
+    const EconeStageRecord::ContactBranches& r = *recorded_->contact_branches;
+    symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns,
+                                                BranchRecord::Start::Continue);
+    skewed_ =
+        std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Continue);
+    results_.max_s4_defect_symmetric = r.max_s4_defect_symmetric;
+    top_skewed_ = restored_top(r.top_skewed);
+    stages_.contact_branches = r;
+    write_econe_stage_record(stage_record_path(), stages_);
+    say("# stage 2-4: taken from stages.json (" + std::to_string(symmetric_->rows()) +
+        " symmetric and " + std::to_string(skewed_->rows()) + " skewed samples recorded)");
+    return r.traced;
+  }
+  // The branches are traced again: what the record held of them and of the stages after them
+  // is stale.
+  recorded_.reset();
+  write_econe_stage_record(stage_record_path(), stages_);
+  symmetric_ =
+      std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
+  skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
+  say("# stage 2-4: the symmetric branch with contact from phi_e = " + fixed(start_.parameter, 6) +
+      ", the skewed cone, the crossing");
+  char header[256];
+  std::snprintf(header, sizeof header, "%-9s %9s %12s %12s %10s %8s %3s %7s %5s %9s %3s", "branch",
+                "phi_e", "E_stretch", "E_bend", "E_penalty", "Eb_hat", "neg", "gamma", "n_c", "s4",
+                "it");
+  say(header);
+  EconeBranchCallbacks callbacks;
+  callbacks.on_sample = [this](EconeBranch which, const ContactBranchSample& s) {
+    const double defect = record_sample(to_string(which), record(which), s);
+    if (which == EconeBranch::Symmetric && std::isfinite(defect))
+      results_.max_s4_defect_symmetric =
+          std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
+    if (which == EconeBranch::Skewed) keep_if_top(top_skewed_, s, defect, *skewed_);
+  };
+  callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
+    record_special(to_string(which), record(which), sp);
+  };
+  callbacks.on_event = [this](const LocatedEvent& e) {
+    std::ostringstream j;
+    j << std::setprecision(10) << "{\"kind\": \"" << e.kind << "\", \"phi_e\": " << e.parameter
+      << ", \"bracket\": " << e.bracket_width << "}";
+    symmetric_->add_event(j.str(), {e.kind, e.parameter, "symmetric", {}});
+    symmetric_->commit();
+    say("# symmetric branch: event " + e.kind + " at phi_e = " + fixed(e.parameter, 7));
+  };
+  callbacks.on_note = [this](const std::string& text) { say("# " + text); };
+  const EconeBranchResult traced = trace_econe_branches(
+      *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
+  stages_.contact_branches = {traced, results_.max_s4_defect_symmetric, recorded_top(top_skewed_)};
+  write_econe_stage_record(stage_record_path(), stages_);
+  return traced;
+}
+
 /// Stage 5: the orientation check's lowest turned state that breaks S4, traced with the
 /// contact penalty in the full space (its core is free of the mesh's mirror lines), down to
 /// where the skewed cone is followed and up to continuation.phi_max; compared with the
 /// symmetric branch and with the skewed cone.
 void EconeContactRun::trace_turned() {
-  fs::remove_all(fs::path(dir_) / "turned");  // stale once the branches are traced again
+  // A resumed study's record of the same scene and start holds the traces whole.
+  const bool from_record = recorded_ && recorded_->turned && turned_start_.size() > 0 &&
+                           BranchRecord::exists(dir_ + "/turned");
+  if (!from_record)
+    fs::remove_all(fs::path(dir_) / "turned");  // stale once the branches are traced again
   if (turned_start_.size() == 0) return;
   const double phi0 = results_.orientation_check->phi_e;
+  EconeTurnedBranch t;
+  t.start_phi = phi0;
+  t.turn_deg = turned_turn_deg_;
+  EconeStageRecord::Turned traced;
+  if (from_record) {
+    traced = *recorded_->turned;
+    turned_ =
+        std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Continue);
+    top_turned_ = restored_top(traced.top);
+    say("# stage 5: taken from stages.json (" + std::to_string(turned_->rows()) +
+        " samples of the turned cone recorded)");
+  } else {
+    recorded_.reset();  // the checks of stage 6 were made on the states traced here before
+    traced = trace_turned_branch(phi0);
+  }
+  stages_.turned = traced;
+  write_econe_stage_record(stage_record_path(), stages_);
+  t.lowest_phi_breaking_s4 = traced.lowest_phi_breaking_s4;
+  t.end = "downwards: " + traced.down.message + "; upwards: " + traced.up.message;
+  // A trace that ended before its bound leaves the study incomplete, as the other stages do.
+  for (const auto& [name, trace] :
+       {std::pair{"downwards", &traced.down}, std::pair{"upwards", &traced.up}}) {
+    if (trace->reached_bound) continue;
+    const std::string why = std::string("turned branch ") + name + ": " + trace->message;
+    mark_incomplete(why);
+  }
+  measure_turned(std::move(t));
+}
+
+/// Stage 5's two traces from the turned state at phi0, into DIR/turned (a fresh record).
+EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Fresh);
   say("# stage 5: the cone turned by " + fixed(turned_turn_deg_, 3) +
       " deg against the mesh and relaxed at phi_e = " + fixed(phi0, 6) +
@@ -593,9 +715,7 @@ void EconeContactRun::trace_turned() {
   o.arclength.max_steps = options_.max_steps_per_branch;
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
   const double threshold = scene_.study.symmetry_threshold;
-  EconeTurnedBranch t;
-  t.start_phi = phi0;
-  t.turn_deg = turned_turn_deg_;
+  EconeStageRecord::Turned t;
   bool skip_start = false;  // the upward trace's corrected start is the downward trace's
   const auto on_sample = [&](const ContactBranchSample& s) {
     if (skip_start) {
@@ -603,7 +723,7 @@ void EconeContactRun::trace_turned() {
       return;
     }
     const double defect = record_sample("turned", *turned_, s);
-    keep_if_top(top_turned_, s, defect);
+    keep_if_top(top_turned_, s, defect, *turned_);
     if (breaks_s4(defect, threshold))
       t.lowest_phi_breaking_s4 =
           std::min(t.lowest_phi_breaking_s4.value_or(s.sample.parameter), s.sample.parameter);
@@ -619,14 +739,15 @@ void EconeContactRun::trace_turned() {
                                                      no_direction, 1.0, pins, o, on_sample,
                                                      on_special);
   say("# turned branch, upwards: " + up.message);
-  t.end = "downwards: " + down.message + "; upwards: " + up.message;
-  // A trace that ended before its bound leaves the study incomplete, as the other stages do.
-  for (const auto& [name, trace] : {std::pair{"downwards", &down}, std::pair{"upwards", &up}}) {
-    if (trace->reached_bound) continue;
-    const std::string why = std::string("turned branch ") + name + ": " + trace->message;
-    mark_incomplete(why);
-  }
+  t.down = {down.reached_bound, down.message};
+  t.up = {up.reached_bound, up.message};
+  t.top = recorded_top(top_turned_);
+  return t;
+}
 
+/// Stage 5's key values from the turned cone's record: against the symmetric branch and the
+/// skewed cone, and phi_crit_energy measured against it.
+void EconeContactRun::measure_turned(EconeTurnedBranch t) {
   // Its samples in the order traced (row k of the record) and by phi_e, against the symmetric
   // branch and the skewed cone.
   const auto by_phi = [](const BranchStateSample& a, const BranchStateSample& b) {
@@ -706,7 +827,14 @@ void EconeContactRun::check_hard_contact_points() {
       std::ostringstream name;
       name << branch << "/hard_contact_phi" << std::setprecision(10) << at << ".json";
       p.file = name.str();
-      p.check = check_hard_contact(scene_, *model_, *proxy_, *state);
+      const HardContactCheck* recorded =
+          recorded_ ? recorded_->hard_contact_at(branch, at) : nullptr;
+      if (recorded) {
+        p.check = *recorded;
+        say("#   taken from stages.json");
+      } else {
+        p.check = check_hard_contact(scene_, *model_, *proxy_, *state);
+      }
       write_file_atomically(dir_ + "/" + p.file, hard_contact_check_json(p.check));
       std::ostringstream line;
       line << "#   " << (p.check.converged ? "converged" : "not converged") << " ("
@@ -717,6 +845,8 @@ void EconeContactRun::check_hard_contact_points() {
            << ", gamma " << p.check.penalty_gamma << " -> " << p.check.hard_gamma;
       say(line.str());
       p.check.x.resize(0);  // results.json keeps the comparison, not the state
+      stages_.hard_contact.push_back({branch, at, p.check});
+      write_econe_stage_record(stage_record_path(), stages_);
       results_.hard_contact.push_back(std::move(p));
     }
   }
@@ -966,38 +1096,18 @@ EconeContactResults EconeContactRun::run() {
   set_up_contact();
   fs::remove_all(fs::path(dir_) / "orientation");  // stale once the cone is traced again
   check_orientation();
-  symmetric_ =
-      std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
-  skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
-  say("# stage 2-4: the symmetric branch with contact from phi_e = " + fixed(start_.parameter, 6) +
-      ", the skewed cone, the crossing");
-  char header[256];
-  std::snprintf(header, sizeof header, "%-9s %9s %12s %12s %10s %8s %3s %7s %5s %9s %3s", "branch",
-                "phi_e", "E_stretch", "E_bend", "E_penalty", "Eb_hat", "neg", "gamma", "n_c", "s4",
-                "it");
-  say(header);
-  EconeBranchCallbacks callbacks;
-  callbacks.on_sample = [this](EconeBranch which, const ContactBranchSample& s) {
-    const double defect = record_sample(to_string(which), record(which), s);
-    if (which == EconeBranch::Symmetric && std::isfinite(defect))
-      results_.max_s4_defect_symmetric =
-          std::max(results_.max_s4_defect_symmetric.value_or(0.0), defect);
-    if (which == EconeBranch::Skewed) keep_if_top(top_skewed_, s, defect);
-  };
-  callbacks.on_special = [this](EconeBranch which, const SpecialPoint& sp) {
-    record_special(to_string(which), record(which), sp);
-  };
-  callbacks.on_event = [this](const LocatedEvent& e) {
-    std::ostringstream j;
-    j << std::setprecision(10) << "{\"kind\": \"" << e.kind << "\", \"phi_e\": " << e.parameter
-      << ", \"bracket\": " << e.bracket_width << "}";
-    symmetric_->add_event(j.str(), {e.kind, e.parameter, "symmetric", {}});
-    symmetric_->commit();
-    say("# symmetric branch: event " + e.kind + " at phi_e = " + fixed(e.parameter, 7));
-  };
-  callbacks.on_note = [this](const std::string& text) { say("# " + text); };
-  const EconeBranchResult traced = trace_econe_branches(
-      *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
+  // What the stages after the cone found, from a resumed study's record of the same scene
+  // and start (studies/econe_stage_record.hpp); this run's record starts from the key alone.
+  stages_.key = econe_stage_key(scene_, start_);
+  if (existing_ == ExistingOutput::Resume) {
+    recorded_ = read_econe_stage_record(stage_record_path());
+    if (recorded_ && recorded_->key != stages_.key) {
+      say("# stages.json was recorded from another scene or another start of the contact era: "
+          "stages 2-6 are traced afresh");
+      recorded_.reset();
+    }
+  }
+  const EconeBranchResult traced = contact_branches();
   summarize(traced);
   trace_turned();
   check_hard_contact_points();

@@ -60,6 +60,7 @@ execute_process(COMMAND "${PROGRAM}" run "${OUT}/econe.json" --out "${OUT}/run"
 if(NOT rc EQUAL 0 AND NOT rc EQUAL 3)
   message(FATAL_ERROR "growshell run failed (${rc}):\n${log}\n${err}")
 endif()
+set(rc_first_run ${rc})
 file(READ "${OUT}/run/results.json" results)
 foreach(key phi_first_contact phi_crit_stability max_s4_defect_symmetric completed end)
   string(JSON ${key} GET "${results}" ${key})
@@ -302,3 +303,40 @@ if(NOT three_mode EQUAL 3 OR NOT off EQUAL 0 OR NOT three_highest_phi GREATER_EQ
                       "0.03377), to ${three_highest_phi}, at least "
                       "${three_lowest_energy_above_two_fold} above the two-fold cone:\n${three}")
 endif()
+# Resuming the finished study (issue #17): the cone and the n-fold cone are resumed from their
+# last states, steps 3-7 (the branches with contact, the turned cone, the hard-constraint
+# checks) are taken from DIR/stages.json instead of being traced again, and the winding from
+# its record. The resumed run ends as the first did, its results.json holds the same values
+# (all but the wall times) and every branch record is unchanged to the byte. About 30 s: the
+# orientation check's relaxation is run again.
+foreach(branch symmetric skewed turned wound)
+  file(READ "${OUT}/run/${branch}/branch.csv" csv_before_${branch})
+endforeach()
+string(REGEX REPLACE "\"[a-z_]*seconds\": [^,\n]*" "" results_before "${results}")
+execute_process(COMMAND "${PROGRAM}" run "${OUT}/econe.json" --out "${OUT}/run" --resume
+                RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+if(NOT rc EQUAL rc_first_run)
+  message(FATAL_ERROR "the resumed study exited with ${rc}, the first run with "
+                      "${rc_first_run}:\n${log}\n${err}")
+endif()
+foreach(line "# stage 2-4: taken from stages.json" "# stage 5: taken from stages.json"
+             "#   taken from stages.json")
+  if(NOT log MATCHES "${line}")
+    message(FATAL_ERROR "the resumed study's log does not say '${line}':\n${log}")
+  endif()
+endforeach()
+if(log MATCHES "\nsymmetric |\nskewed |\nturned ")
+  message(FATAL_ERROR "the resumed study traced a branch with contact again:\n${log}")
+endif()
+file(READ "${OUT}/run/results.json" results_resumed)
+string(REGEX REPLACE "\"[a-z_]*seconds\": [^,\n]*" "" results_after "${results_resumed}")
+if(NOT results_after STREQUAL results_before)
+  message(FATAL_ERROR "the resumed study's results.json differs from the first run's:\n"
+                      "${results_resumed}\nfirst run:\n${results}")
+endif()
+foreach(branch symmetric skewed turned wound)
+  file(READ "${OUT}/run/${branch}/branch.csv" csv_after)
+  if(NOT csv_after STREQUAL csv_before_${branch})
+    message(FATAL_ERROR "the resumed study changed ${branch}/branch.csv")
+  endif()
+endforeach()
