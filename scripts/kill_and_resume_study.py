@@ -5,10 +5,11 @@ checks that it ends with the record of the run that was never interrupted (issue
 usage: kill_and_resume_study.py GROWSHELL SCENE OUT [--kills N] [--seed S]
 
 Runs `GROWSHELL run SCENE` once without interruption into OUT/uninterrupted, then again into
-OUT/killed, killed N times (default 10) at moments drawn (seeded by S, default 17) uniformly
-over the uninterrupted run's wall time, each run resumed with --resume, and once more to its
-end. Where a kill falls inside the writing of a row, a state or a JSON file is left to chance;
-with N kills over a study of many records some do.
+OUT/killed, killed N times (default 10), each run resumed with --resume, and once more to its
+end. Each kill comes when the records below OUT/killed hold a number of rows (all branch.csv
+files together) drawn at random (seeded by S, default 17) over the uninterrupted run's, then
+after a random delay of up to three rows' time: the kills are spread over every stage, and some
+fall inside the writing of a row, a state or a JSON file.
 
 Then, for every branch record of the uninterrupted run (each directory holding a branch.csv:
 the cone, the branches with contact, the n-fold cones, the winding, ...):
@@ -37,9 +38,23 @@ import time
 RELATIVE, ABSOLUTE = 1e-8, 1e-12
 
 
-def run(growshell, scene, out, resume, kill_after=None):
-    """Runs the study; with kill_after (s), kills it with SIGKILL then if it still runs.
-    Returns (return code, whether it was killed, wall time, the log)."""
+def recorded_rows(directory):
+    """Rows of every branch.csv below `directory` written so far (partial lines count)."""
+    rows = 0
+    for root, _, files in os.walk(directory):
+        if "branch.csv" in files:
+            try:
+                with open(os.path.join(root, "branch.csv"), "rb") as f:
+                    rows += max(0, f.read().count(b"\n") - 1)
+            except OSError:
+                pass
+    return rows
+
+
+def run(growshell, scene, out, resume, kill_at_rows=None, then=0.0):
+    """Runs the study; with kill_at_rows, kills it with SIGKILL `then` seconds after the
+    records below `out` hold that many rows in all (if it still runs). Returns (return code,
+    whether it was killed, wall time, the log)."""
     command = [growshell, "run", scene, "--out", out] + (["--resume"] if resume else [])
     log_path = out.rstrip("/") + ".log"
     started = time.monotonic()
@@ -48,10 +63,11 @@ def run(growshell, scene, out, resume, kill_after=None):
         log.flush()
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
         killed = False
-        if kill_after is not None:
-            try:
-                process.wait(timeout=kill_after)
-            except subprocess.TimeoutExpired:
+        if kill_at_rows is not None:
+            while process.poll() is None and recorded_rows(out) < kill_at_rows:
+                time.sleep(0.01)
+            time.sleep(then)
+            if process.poll() is None:
                 process.send_signal(signal.SIGKILL)
                 killed = True
         process.wait()
@@ -160,23 +176,29 @@ def main():
         sys.exit(f"the uninterrupted run failed ({rc_reference}):\n{log}")
 
     killed_dir = os.path.join(args.out, "killed")
+    total = recorded_rows(reference)
+    row_time = duration / max(1, total)
     moments = random.Random(args.seed)
-    # Each kill a moment drawn over the whole study's time from the start of its run; a
-    # resumed run skips what is recorded, so later kills fall in later stages.
+    # Each kill after the records hold a number of rows drawn over the whole study (sorted),
+    # then a delay of up to three rows' time, so that some fall inside the writing of a row, a
+    # state or a JSON file, and some in the work between rows (a skewed search, a relaxation,
+    # an Ipopt check). A resumed run that lost a stage writes its rows again before the next
+    # kill's count is reached.
+    targets = sorted(moments.sample(range(1, total), min(args.kills, total - 1)))
     kills, failures, spent = [], [], 0.0
-    for k in range(args.kills):
+    for target in targets:
         resume = os.path.isdir(killed_dir)
-        after = moments.uniform(0.05, 0.5) * duration
+        then = moments.uniform(0.0, 3.0 * row_time)
         rc, killed, wall, log = run(args.growshell, args.scene, killed_dir, resume,
-                                    kill_after=after)
+                                    kill_at_rows=target, then=then)
         spent += wall
         if killed:
             # Where it was: the last stage line of this run's log.
             this_run = log[log.rfind("\n=== "):]
             stages = [line for line in this_run.splitlines() if line.startswith("# stage")]
-            kills.append(f"{after:.0f} s, {stages[-1][:60] if stages else 'before stage 1'}")
+            kills.append(f"row {target} + {then:.1f} s, {stages[-1][:60] if stages else 'before stage 1'}")
         elif rc != rc_reference:
-            failures.append(f"run {k + 1} ended with {rc}, uninterrupted {rc_reference}")
+            failures.append(f"a run ended with {rc}, uninterrupted {rc_reference}:\n{log[-3000:]}")
             break
     rc, _, wall, log = run(args.growshell, args.scene, killed_dir, resume=True)
     spent += wall

@@ -471,7 +471,9 @@ BranchTrace ConeBranchRun::trace_from_state() {
       BranchTrace done;
       done.last = start;
       done.reached_bound = true;
-      done.message = "stopped at event 'contact' (recorded)";
+      // The uninterrupted trace's message, so that the resumed record's results.json says
+      // what it said.
+      done.message = "stopped at event 'contact'";
       return done;
     }
   }
