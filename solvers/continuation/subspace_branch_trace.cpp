@@ -39,7 +39,7 @@ BranchTrace trace_branch_in_subspace(const ParametrizedObjective& family,
 
   SymmetricSubspaceFamily reduced(family, subspace);
   const Eigen::VectorXd y0 = subspace.restrict_to(frame.apply(x0));
-  const std::vector<Eigen::Index> pins = subspace.rigid_motion_pins(subspace.expand(y0));
+  const std::vector<Eigen::Index> pins = subspace.trace_pins(subspace.expand(y0));
   Eigen::VectorXd direction = subspace.restrict_to(frame.rotate(direction_state));
   for (const Eigen::Index d : pins) direction(d) = 0.0;
 

@@ -139,12 +139,43 @@ std::vector<Eigen::Index> SymmetricSubspace::rigid_motion_pins(
   Eigen::Index rank = 0;
   while (rank < sigma.size() && sigma(rank) > 1e-3) ++rank;
   if (rank == 0) return {};
-  const Eigen::MatrixXd modes = svd.matrixU().leftCols(rank);  // dimension x rank
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(modes.transpose());
+  // Column-pivoted Gram-Schmidt on the modes' rows: each pin the dof with the largest
+  // component left after the earlier pins' are projected out. The symmetric rigid fields have
+  // many equal components (a translation along z gives every orbit of the same size the same
+  // one), so the pivot is chosen among those within a relative 1e-6 of the largest by the
+  // lowest index: the same dofs at every state of a branch, not whichever round-off favours,
+  // so that a trace resumed from any of its states is parametrised as the one that wrote it.
+  Eigen::MatrixXd rows = svd.matrixU().leftCols(rank).transpose();  // rank x dimension
   std::vector<Eigen::Index> pins;
-  for (Eigen::Index k = 0; k < rank; ++k) pins.push_back(qr.colsPermutation().indices()(k));
+  for (Eigen::Index k = 0; k < rank; ++k) {
+    const Eigen::VectorXd norms = rows.colwise().norm().transpose();
+    const double largest = norms.maxCoeff();
+    Eigen::Index pivot = 0;
+    while (norms(pivot) < (1.0 - 1e-6) * largest) ++pivot;
+    pins.push_back(pivot);
+    const Eigen::VectorXd q = rows.col(pivot) / norms(pivot);
+    rows -= q * (q.transpose() * rows);
+  }
   std::sort(pins.begin(), pins.end());
   return pins;
+}
+
+void SymmetricSubspace::set_pin_configuration(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (x.size() != full_dimension())
+    throw std::invalid_argument("SymmetricSubspace::set_pin_configuration: need " +
+                                std::to_string(full_dimension()) + " entries");
+  const double extent = std::max(1.0, x.cwiseAbs().maxCoeff());
+  if (!(asymmetry(x) <= 1e-9 * extent))
+    throw std::invalid_argument(
+        "SymmetricSubspace::set_pin_configuration: the configuration is " +
+        std::to_string(asymmetry(x)) + " off the subspace, not a symmetric one");
+  pin_configuration_ = x;
+}
+
+std::vector<Eigen::Index> SymmetricSubspace::trace_pins(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return pin_configuration_.size() > 0 ? rigid_motion_pins(pin_configuration_)
+                                       : rigid_motion_pins(x);
 }
 
 RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -215,7 +246,9 @@ SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int
     mirrors.push_back(mirror_symmetry(points, axis, tolerance));
     check_maps_faces_onto_faces(model.topology(), mirrors.back());
   }
-  return SymmetricSubspace(nv, mirrors);
+  SymmetricSubspace subspace(nv, mirrors);
+  subspace.set_pin_configuration(X);
+  return subspace;
 }
 
 SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance) {

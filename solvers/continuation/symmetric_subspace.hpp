@@ -45,9 +45,22 @@ class SymmetricSubspace {
   /// vertex-major) that stay in the subspace and nothing else: the symmetric parts of the six
   /// unit rigid velocity fields at x span k dimensions (singular values above 1e-3; k = 1 for
   /// two mirrors through the z-axis: the translation along z), and k reduced dofs are chosen
-  /// by column-pivoted QR of that basis (largest components first; deterministic). Throws
-  /// std::invalid_argument for a wrong size.
+  /// by column-pivoted Gram-Schmidt on that basis (largest components first, ties within a
+  /// relative 1e-6 to the lowest index; deterministic). Throws std::invalid_argument for a
+  /// wrong size.
   std::vector<Eigen::Index> rigid_motion_pins(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  /// The symmetric configuration (full, vertex-major) whose rigid motions choose the pins of
+  /// every trace in the subspace (trace_pins), e.g. the mesh's reference positions
+  /// (mirror_subspace sets them). Throws std::invalid_argument for a wrong size or a
+  /// configuration off the subspace by more than 1e-9 of its extent.
+  void set_pin_configuration(const Eigen::Ref<const Eigen::VectorXd>& x);
+  /// The pins of a trace that starts at the symmetric state x: rigid_motion_pins of the pin
+  /// configuration where one is set, else of x. The rigid fields of a branch's states differ
+  /// (a rotation's field depends on the positions), and so would the dofs chosen at each;
+  /// chosen on one configuration, they are the same wherever a trace of the branch starts, so
+  /// a trace resumed from any of its states is parametrised as the one that wrote it.
+  std::vector<Eigen::Index> trace_pins(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// The rigid motion that brings a state x whose mirror planes have been turned and moved
   /// (e.g. by rigid-motion pins that hold three vertices in a plane other than the cone's
@@ -73,12 +86,14 @@ class SymmetricSubspace {
   std::vector<VertexSymmetry> generators_;
   Eigen::SparseMatrix<double> basis_;
   int group_order_ = 1;
+  Eigen::VectorXd pin_configuration_;  ///< empty: the pins are chosen at each trace's start
 };
 
 /// The states of `model` (all control points, vertex-major) that are symmetric under the
 /// mirrors about the coordinate planes normal to `axes` (0 = x: x -> -x, 1 = y: y -> -y)
 /// through the origin: an n-fold cone with a fold on the x-axis has the mirror y -> -y, and
-/// for even n also x -> -x. Throws std::invalid_argument naming a vertex
+/// for even n also x -> -x. Its pin configuration (set_pin_configuration) is the model's
+/// reference positions. Throws std::invalid_argument naming a vertex
 /// (find_vertex_symmetry) or a face (check_maps_faces_onto_faces) if the reference control
 /// mesh lacks a mirror within `tolerance` (m), and for an empty or repeated axis list.
 SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int>& axes,

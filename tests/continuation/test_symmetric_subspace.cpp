@@ -105,6 +105,71 @@ TEST(SymmetricSubspace, RigidMotionPinsAreThoseOfTheSymmetricRigidMotions) {
   EXPECT_EQ(none.rigid_motion_pins(x).size(), 6u);
 }
 
+TEST(SymmetricSubspace, RigidMotionPinsAreTheSameDofsAtEveryStateOfABranch) {
+  // The translation along z gives every orbit of the same size the same component: the pin is
+  // the lowest-index reduced dof among the largest orbits' z-dofs, whichever symmetric state
+  // it is chosen at (a trace resumed from a later state pins what the trace that wrote it did).
+  ShellModel model = small_disc();
+  const SymmetricSubspace sub = two_mirror_subspace(model, 1e-9);
+  Eigen::Index expected = -1, largest_orbit = 0;
+  for (Eigen::Index j = 0; j < sub.dimension(); ++j) {
+    Eigen::Index entries = 0;
+    bool only_z = true;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(sub.basis(), j); it; ++it) {
+      ++entries;
+      only_z = only_z && it.row() % 3 == 2;
+    }
+    if (only_z && entries > largest_orbit) {
+      largest_orbit = entries;
+      expected = j;
+    }
+  }
+  ASSERT_GE(expected, 0);
+  for (const Eigen::VectorXd& x :
+       {Eigen::VectorXd(model.reference_positions()), symmetric_state(model, 0.2, 0.1),
+        symmetric_state(model, 0.5, -0.3), symmetric_state(model, 1e-6, 0.0),
+        symmetric_state(model, -0.05, 0.4)}) {
+    const std::vector<Eigen::Index> pins = sub.rigid_motion_pins(x);
+    ASSERT_EQ(pins.size(), 1u);
+    EXPECT_EQ(pins[0], expected);
+  }
+  // One mirror (the subspace of an odd number of folds): translations along x and z and the
+  // rotation about y stay in it, three pins. The rotation's field depends on the state, and so
+  // do the dofs rigid_motion_pins chooses at each; a trace's pins (trace_pins) are chosen on
+  // the reference positions, the same at every state, and still hold all three motions there.
+  const SymmetricSubspace one = mirror_subspace(model, {1}, 1e-9);
+  const std::vector<Eigen::Index> at_flat = one.rigid_motion_pins(model.reference_positions());
+  ASSERT_EQ(at_flat.size(), 3u);
+  bool chosen_elsewhere = false;
+  for (const Eigen::VectorXd& x :
+       {symmetric_state(model, 0.2, 0.1), symmetric_state(model, 0.5, -0.3),
+        symmetric_state(model, 1e-6, 0.0), symmetric_state(model, -0.05, 0.4)}) {
+    chosen_elsewhere = chosen_elsewhere || one.rigid_motion_pins(x) != at_flat;
+    const std::vector<Eigen::Index> pins = one.trace_pins(x);
+    EXPECT_EQ(pins, at_flat);
+    // The pinned rows of the symmetric rigid fields at x have full rank, well conditioned.
+    Eigen::MatrixXd fields = rigid_velocity_fields(x);
+    for (int k = 0; k < 6; ++k) fields.col(k).normalize();
+    const Eigen::MatrixXd reduced = one.basis().transpose() * fields;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeThinU);
+    const Eigen::MatrixXd modes = svd.matrixU().leftCols(3);
+    Eigen::MatrixXd pinned(3, 3);
+    for (int r = 0; r < 3; ++r) pinned.row(r) = modes.row(pins[static_cast<std::size_t>(r)]);
+    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(pinned).singularValues();
+    EXPECT_GT(sigma(2) / sigma(0), 0.05) << sigma.transpose();
+  }
+  EXPECT_TRUE(chosen_elsewhere);  // what the pin configuration is for
+  // Without one, a trace pins what the state's own fields give; a configuration off the
+  // subspace is refused.
+  const Eigen::MatrixX3d P = as_rows(model.reference_positions());
+  SymmetricSubspace bare(P.rows(), {mirror_symmetry(P, 1, 1e-9)});
+  const Eigen::VectorXd x = symmetric_state(model, 0.5, -0.3);
+  EXPECT_EQ(bare.trace_pins(x), bare.rigid_motion_pins(x));
+  Eigen::VectorXd off = model.reference_positions();
+  off(4) += 0.01;
+  EXPECT_THROW(bare.set_pin_configuration(off), std::invalid_argument);
+}
+
 TEST(SymmetricSubspace, AligningMotionBringsATurnedSymmetricStateBack) {
   ShellModel model = small_disc();
   const SymmetricSubspace sub = two_mirror_subspace(model, 1e-9);
