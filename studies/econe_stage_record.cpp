@@ -42,28 +42,6 @@ Json top_json(const std::optional<EconeTopSample>& top) {
   return j;
 }
 
-Json check_json(const HardContactCheck& c) {
-  Json j;
-  j["phi_e"] = number(c.phi_e);
-  j["unknowns"] = c.unknowns;
-  j["converged"] = c.converged;
-  j["message"] = c.message;
-  j["seconds"] = number(c.seconds);
-  j["rounds"] = c.rounds;
-  j["iterations"] = c.iterations;
-  j["penalty_elastic_energy"] = number(c.penalty_elastic_energy);
-  j["hard_elastic_energy"] = number(c.hard_elastic_energy);
-  j["relative_energy_difference"] = number(c.relative_energy_difference);
-  j["state_difference_over_h"] = number(c.state_difference_over_h);
-  j["penalty_min_distance_over_h"] = number(c.penalty_min_distance_over_h);
-  j["hard_min_distance_over_h"] = number(c.hard_min_distance_over_h);
-  j["penalty_s4_defect"] = number(c.penalty_s4_defect);
-  j["hard_s4_defect"] = number(c.hard_s4_defect);
-  j["penalty_gamma"] = number(c.penalty_gamma);
-  j["hard_gamma"] = number(c.hard_gamma);
-  return j;
-}
-
 Json contact_branches_json(const EconeStageRecord::ContactBranches& b) {
   const EconeBranchResult& t = b.traced;
   Json j;
@@ -291,7 +269,7 @@ std::string econe_stage_record_json(const EconeStageRecord& record) {
     Json e;
     e["branch"] = p.branch;
     e["at"] = number(p.at);
-    e["check"] = check_json(p.check);
+    e["check"] = Json::parse(hard_contact_check_json(p.check));
     points.push_back(std::move(e));
   }
   j["hard_contact"] = std::move(points);

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "tests/studies/scratch_directory.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace growshell {
 namespace {
@@ -15,12 +17,7 @@ using EconeStageRecordFile = testing::ScratchDirectoryTest;
 /// The message of the std::runtime_error that `f` throws ("" if it throws nothing).
 template <class F>
 std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
+  return test_support::error_of<std::runtime_error>(std::forward<F>(f));
 }
 
 /// A record with every field set, some to values that are awkward to round-trip.

@@ -7,12 +7,13 @@
 
 namespace growshell::test_support {
 
-/// The message of the std::invalid_argument that `f` throws ("" if it throws nothing).
-template <class F>
+/// The message of the exception of type E (std::invalid_argument unless given) that `f`
+/// throws ("" if it throws nothing).
+template <class E = std::invalid_argument, class F>
 std::string error_of(F&& f) {
   try {
     f();
-  } catch (const std::invalid_argument& e) {
+  } catch (const E& e) {
     return e.what();
   }
   return "";
