@@ -182,6 +182,10 @@ class EconeContactRun {
   /// Stages 2-4 traced, or taken from the stage record of a resumed study.
   EconeBranchResult contact_branches();
   std::string stage_record_path() const { return dir_ + "/stages.json"; }
+  /// Writes stages_ to stage_record_path() with what recorded_ holds of the stages this run
+  /// has not reached yet (still valid: recorded_ is dropped before a stage is traced again),
+  /// so that a kill between two stages loses no finished one.
+  void save_stages() const;
   /// What this run's stages 2-6 found so far (written to stage_record_path() after each), and
   /// what a resumed study's record holds for the same scene and start (empty otherwise).
   EconeStageRecord stages_;
@@ -600,6 +604,16 @@ void EconeContactRun::summarize(const EconeBranchResult& t) {
   r.end = !r.completed ? end : note.empty() ? "completed" : "completed (" + note + ")";
 }
 
+void EconeContactRun::save_stages() const {
+  EconeStageRecord out = stages_;
+  if (recorded_) {
+    if (!out.turned) out.turned = recorded_->turned;
+    for (const EconeStageRecord::HardContactPoint& p : recorded_->hard_contact)
+      if (!out.hard_contact_at(p.branch, p.at)) out.hard_contact.push_back(p);
+  }
+  write_econe_stage_record(stage_record_path(), out);
+}
+
 /// Stages 2-4: the symmetric branch with contact, the skewed search and the skewed branch
 /// (trace_econe_branches), recorded in DIR/symmetric and DIR/skewed, and what they found in
 /// the stage record; a resumed study whose record holds them takes them from there.
@@ -615,7 +629,6 @@ EconeBranchResult EconeContactRun::contact_branches() {
     results_.max_s4_defect_symmetric = r.max_s4_defect_symmetric;
     top_skewed_ = restored_top(r.top_skewed);
     stages_.contact_branches = r;
-    write_econe_stage_record(stage_record_path(), stages_);
     say("# stage 2-4: taken from stages.json (" + std::to_string(symmetric_->rows()) +
         " symmetric and " + std::to_string(skewed_->rows()) + " skewed samples recorded)");
     return r.traced;
@@ -623,7 +636,7 @@ EconeBranchResult EconeContactRun::contact_branches() {
   // The branches are traced again: what the record held of them and of the stages after them
   // is stale.
   recorded_.reset();
-  write_econe_stage_record(stage_record_path(), stages_);
+  save_stages();
   symmetric_ =
       std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
   skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
@@ -657,7 +670,7 @@ EconeBranchResult EconeContactRun::contact_branches() {
   const EconeBranchResult traced = trace_econe_branches(
       *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
   stages_.contact_branches = {traced, results_.max_s4_defect_symmetric, recorded_top(top_skewed_)};
-  write_econe_stage_record(stage_record_path(), stages_);
+  save_stages();
   return traced;
 }
 
@@ -669,8 +682,15 @@ void EconeContactRun::trace_turned() {
   // A resumed study's record of the same scene and start holds the traces whole.
   const bool from_record = recorded_ && recorded_->turned && turned_start_.size() > 0 &&
                            BranchRecord::exists(dir_ + "/turned");
-  if (!from_record)
+  if (!from_record) {
+    if (turned_start_.size() > 0) {
+      // The record must not describe the turned cone (nor the checks made on its states)
+      // while it is traced again.
+      recorded_.reset();
+      save_stages();
+    }
     fs::remove_all(fs::path(dir_) / "turned");  // stale once the branches are traced again
+  }
   if (turned_start_.size() == 0) return;
   const double phi0 = results_.orientation_check->phi_e;
   EconeTurnedBranch t;
@@ -685,11 +705,10 @@ void EconeContactRun::trace_turned() {
     say("# stage 5: taken from stages.json (" + std::to_string(turned_->rows()) +
         " samples of the turned cone recorded)");
   } else {
-    recorded_.reset();  // the checks of stage 6 were made on the states traced here before
     traced = trace_turned_branch(phi0);
   }
   stages_.turned = traced;
-  write_econe_stage_record(stage_record_path(), stages_);
+  if (!from_record) save_stages();
   t.lowest_phi_breaking_s4 = traced.lowest_phi_breaking_s4;
   t.end = "downwards: " + traced.down.message + "; upwards: " + traced.up.message;
   // A trace that ended before its bound leaves the study incomplete, as the other stages do.
@@ -846,7 +865,7 @@ void EconeContactRun::check_hard_contact_points() {
       say(line.str());
       p.check.x.resize(0);  // results.json keeps the comparison, not the state
       stages_.hard_contact.push_back({branch, at, p.check});
-      write_econe_stage_record(stage_record_path(), stages_);
+      if (!recorded) save_stages();
       results_.hard_contact.push_back(std::move(p));
     }
   }
