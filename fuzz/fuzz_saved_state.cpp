@@ -50,7 +50,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!same(s.x, t.x) || !same(s.tangent_state, t.tangent_state) ||
         !same_number(s.parameter, t.parameter) ||
         !same_number(s.tangent_parameter, t.tangent_parameter) ||
-        !same_number(s.next_step, t.next_step))
+        !same_number(s.next_step, t.next_step) || !same(s.reduced_x, t.reduced_x) ||
+        !std::equal(s.reduced_frame.rotation.data(), s.reduced_frame.rotation.data() + 9,
+                    t.reduced_frame.rotation.data(), same_number) ||
+        !std::equal(s.reduced_frame.translation.data(), s.reduced_frame.translation.data() + 3,
+                    t.reduced_frame.translation.data(), same_number))
       std::abort();
   }
   return 0;

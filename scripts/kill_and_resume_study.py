@@ -17,7 +17,8 @@ the cone, the branches with contact, the n-fold cones, the winding, ...):
     absolute floor of 1e-12), except corrector_iterations (a resumed start is corrected
     again);
   - its events.json the same events at the same phi_e;
-  - its states/ one state per row and no temporary;
+  - its states/ one state per row, no temporary, and each state equal to the uninterrupted
+    run's byte for byte (a resumed trace takes the very steps of the one that was killed);
 and results.json (the study's, and each record's own) the same numbers in every key, nested
 ones included, except wall times (keys ending in "seconds"). Prints what differs and exits 1
 if anything does. The econe_contact study of the ctest scene takes about half an hour with
@@ -158,6 +159,20 @@ def compare_record(reference, killed, name, failures):
         if len(names) != len(b) - 1 or any(not n.endswith(".state") for n in names):
             failures.append(f"{name}/states holds {len(names)} files for {len(b) - 1} rows: "
                             f"{[n for n in names if not n.endswith('.state')]}")
+        differing = [n for n in names
+                     if file_bytes(os.path.join(states, n)) !=
+                     file_bytes(os.path.join(a_dir, "states", n))]
+        if differing:
+            failures.append(f"{name}/states: {len(differing)} of {len(names)} states differ from "
+                            f"the uninterrupted run's, from {differing[0]} on")
+
+
+def file_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return None
 
 
 def main():

@@ -109,7 +109,7 @@ class ConeBranchRun {
   int index_without_pattern_turn(const BranchSample& s);
   double phase_force(const BranchSample& s);
   BranchTrace trace_cone(const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
-                         double dphi);
+                         double dphi, const BranchSample* resumed = nullptr);
   bool trace_from_flat(BranchTrace& trace);
   BranchTrace trace_from_state();
   ConeBranchStudy finish(const BranchTrace& trace, bool entered_cone, double wall);
@@ -386,8 +386,11 @@ double ConeBranchRun::phase_force(const BranchSample& s) {
 
 /// The cone branch, in the subspace if there is one (full states in and out either way); in
 /// the full space with the pattern's orientation held by a phase condition if asked.
+/// `resumed`: the saved sample (x0, phi0) was read from, whose reduced coordinates a trace in
+/// the subspace starts from (resume_branch_in_subspace).
 BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
-                                      const Eigen::VectorXd& dx, double dphi) {
+                                      const Eigen::VectorXd& dx, double dphi,
+                                      const BranchSample* resumed) {
   const auto sample = [this](const BranchSample& s) { on_sample(s); };
   const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
   const auto event = [this](const LocatedEvent& e) { on_event(e); };
@@ -396,6 +399,16 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
     options.stability_index = [this](const BranchSample& s) {
       return index_without_pattern_turn(s);
     };
+  if (subspace_ && resumed) {
+    bool reduced = false;
+    BranchTrace trace = resume_branch_in_subspace(*model_, *subspace_, *resumed, dx, dphi, pinned_,
+                                                  options, sample, special, events_, event,
+                                                  &reduced);
+    if (!reduced)
+      say("# the saved state keeps no reduced coordinates of this subspace: its projection is "
+          "traced on (the same branch, with steps equal to rounding)");
+    return trace;
+  }
   if (subspace_)
     return trace_branch_in_subspace(*model_, *subspace_, x0, phi0, dx, dphi, pinned_, options,
                                     sample, special, events_, event);
@@ -486,7 +499,7 @@ BranchTrace ConeBranchRun::trace_from_state() {
       start.next_step <= arclength_.max_step)
     arclength_.initial_step = start.next_step;
   return trace_cone(start.x, start.parameter, sign * start.tangent_state,
-                    sign * start.tangent_parameter);
+                    sign * start.tangent_parameter, &start);
 }
 
 ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_cone, double wall) {

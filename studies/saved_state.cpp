@@ -21,8 +21,10 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the binary state format is little-endian; a big-endian build needs byte swaps");
 
-/// Version 2 adds the next step after dphi_e/ds; version 1 is still read (next step 0).
-constexpr std::string_view kMagic = "growshell-state 2\n";
+/// Version 3 adds the reduced state after dx/ds, version 2 the next step after dphi_e/ds;
+/// versions 1 and 2 are still read (no reduced state; version 1: next step 0).
+constexpr std::string_view kMagic = "growshell-state 3\n";
+constexpr std::string_view kMagicVersion2 = "growshell-state 2\n";
 constexpr std::string_view kMagicVersion1 = "growshell-state 1\n";
 constexpr std::string_view kSuffixes[] = {".state", ".txt"};
 
@@ -43,9 +45,9 @@ void put_vector(std::string& out, const Eigen::VectorXd& v) {
 }
 
 BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen::Index n,
-                          std::uint64_t expected_fingerprint, bool has_next_step) {
+                          std::uint64_t expected_fingerprint, int version) {
   std::size_t at = kMagic.size();
-  static_assert(kMagic.size() == kMagicVersion1.size());
+  static_assert(kMagic.size() == kMagicVersion1.size() && kMagic.size() == kMagicVersion2.size());
   auto take = [&](void* to, std::size_t size) {
     if (bytes.size() < at + size) throw std::runtime_error("saved point " + path + " is truncated");
     std::memcpy(to, bytes.data() + at, size);
@@ -59,11 +61,29 @@ BranchSample parse_binary(const std::string& path, std::string_view bytes, Eigen
   BranchSample s;
   take(&s.parameter, sizeof(double));
   take(&s.tangent_parameter, sizeof(double));
-  if (has_next_step) take(&s.next_step, sizeof(double));
+  if (version >= 2) take(&s.next_step, sizeof(double));
   s.x.resize(n);
   s.tangent_state.resize(n);
   take(s.x.data(), static_cast<std::size_t>(n) * sizeof(double));
   take(s.tangent_state.data(), static_cast<std::size_t>(n) * sizeof(double));
+  if (version >= 3) {
+    std::int64_t m = 0;
+    take(&m, sizeof m);
+    if (m < 0 || m > n)
+      throw std::runtime_error("saved point " + path + " is damaged (a reduced state of " +
+                               std::to_string(m) + " entries for " + std::to_string(n) +
+                               " unknowns)");
+    if (m > 0) {
+      double frame[12];
+      take(frame, sizeof frame);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) s.reduced_frame.rotation(r, c) = frame[3 * r + c];
+        s.reduced_frame.translation(r) = frame[9 + r];
+      }
+      s.reduced_x.resize(m);
+      take(s.reduced_x.data(), static_cast<std::size_t>(m) * sizeof(double));
+    }
+  }
   const std::uint64_t expected = fnv1a_64(bytes.substr(0, at));
   std::uint64_t stored = 0;
   take(&stored, sizeof stored);
@@ -125,7 +145,8 @@ void save_branch_state(const std::string& path, const BranchSample& s,
                                 std::to_string(s.tangent_state.size()) + " entries, the state " +
                                 std::to_string(s.x.size()));
   std::string out(kMagic);
-  out.reserve(kMagic.size() + 16 * static_cast<std::size_t>(s.x.size()) + 32);
+  out.reserve(kMagic.size() + 16 * static_cast<std::size_t>(s.x.size()) +
+              8 * static_cast<std::size_t>(s.reduced_x.size()) + 160);
   put(out, static_cast<std::int64_t>(s.x.size()));
   put(out, model_fingerprint);
   put(out, s.parameter);
@@ -133,6 +154,17 @@ void save_branch_state(const std::string& path, const BranchSample& s,
   put(out, s.next_step);
   put_vector(out, s.x);
   put_vector(out, s.tangent_state);
+  if (s.reduced_x.size() > s.x.size())
+    throw std::invalid_argument("save_branch_state: a reduced state of " +
+                                std::to_string(s.reduced_x.size()) + " entries for " +
+                                std::to_string(s.x.size()) + " unknowns");
+  put(out, static_cast<std::int64_t>(s.reduced_x.size()));
+  if (s.reduced_x.size() > 0) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) put(out, s.reduced_frame.rotation(r, c));
+    for (int r = 0; r < 3; ++r) put(out, s.reduced_frame.translation(r));
+    put_vector(out, s.reduced_x);
+  }
   put(out, fnv1a_64(out));
   write_file_atomically(path, out);
 }
@@ -143,8 +175,9 @@ BranchSample load_branch_state(const std::string& path, Eigen::Index n,
   if (!in) throw std::runtime_error("cannot read saved point " + path);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string_view head = std::string_view(bytes).substr(0, kMagic.size());
-  if (head == kMagic) return parse_binary(path, bytes, n, expected_fingerprint, true);
-  if (head == kMagicVersion1) return parse_binary(path, bytes, n, expected_fingerprint, false);
+  if (head == kMagic) return parse_binary(path, bytes, n, expected_fingerprint, 3);
+  if (head == kMagicVersion2) return parse_binary(path, bytes, n, expected_fingerprint, 2);
+  if (head == kMagicVersion1) return parse_binary(path, bytes, n, expected_fingerprint, 1);
   return parse_text(path, bytes, n);
 }
 

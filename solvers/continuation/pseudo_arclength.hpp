@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/parametrized_objective.hpp"
+#include "libshell/mesh/rigid_motion.hpp"
 
 namespace growshell {
 
@@ -94,6 +95,13 @@ struct BranchSample {
   /// the sample with it as ArclengthOptions::initial_step takes the same steps as the trace
   /// that wrote it.
   double next_step = 0.0;
+  /// Set by a trace in reduced coordinates (trace_branch_in_subspace), empty otherwise: the
+  /// reduced state y it traced and the rigid motion from the caller's frame into the
+  /// subspace's, with x = reduced_frame^-1(Q y) bit for bit. Rebuilding y from x is exact
+  /// only to rounding, so a trace resumed from the sample (resume_branch_in_subspace) starts
+  /// from these to take the very steps of the trace that wrote it.
+  Eigen::VectorXd reduced_x;
+  RigidMotion reduced_frame;
 };
 
 /// A change of the negative eigenvalue count between two samples, located in lambda.

@@ -2,43 +2,52 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "solvers/continuation/symmetric_subspace_family.hpp"
 #include "solvers/stability/hessian_negative_count.hpp"
 
 namespace growshell {
+namespace {
 
-BranchTrace trace_branch_in_subspace(const ParametrizedObjective& family,
-                                     const SymmetricSubspace& subspace,
-                                     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
-                                     const Eigen::Ref<const Eigen::VectorXd>& direction_state,
-                                     double direction_parameter,
-                                     const std::vector<Eigen::Index>& fixed_dofs,
-                                     const ArclengthOptions& options,
-                                     const std::function<void(const BranchSample&)>& on_sample,
-                                     const std::function<void(const SpecialPoint&)>& on_special,
-                                     const std::vector<BranchEvent>& events,
-                                     const std::function<void(const LocatedEvent&)>& on_event) {
+void check_dimensions(const ParametrizedObjective& family, const SymmetricSubspace& subspace,
+                      Eigen::Index x0_size, Eigen::Index direction_size, const char* caller) {
   if (subspace.full_dimension() != family.dimension())
-    throw std::invalid_argument("trace_branch_in_subspace: the subspace is for " +
+    throw std::invalid_argument(std::string(caller) + ": the subspace is for " +
                                 std::to_string(subspace.full_dimension()) +
                                 " unknowns, the family has " + std::to_string(family.dimension()));
-  if (x0.size() != family.dimension() || direction_state.size() != family.dimension())
-    throw std::invalid_argument("trace_branch_in_subspace: x0 and direction_state need " +
+  if (x0_size != family.dimension() || direction_size != family.dimension())
+    throw std::invalid_argument(std::string(caller) + ": the start and the direction need " +
                                 std::to_string(family.dimension()) + " entries");
-  const RigidMotion frame = subspace.aligning_motion(x0);
+}
+
+/// The trace from the reduced state y0 in the subspace's frame `frame` (x = frame^-1(Q y)).
+BranchTrace trace_from_reduced(const ParametrizedObjective& family,
+                               const SymmetricSubspace& subspace, const RigidMotion& frame,
+                               const Eigen::VectorXd& y0, double lambda0,
+                               const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                               double direction_parameter,
+                               const std::vector<Eigen::Index>& fixed_dofs,
+                               const ArclengthOptions& options,
+                               const std::function<void(const BranchSample&)>& on_sample,
+                               const std::function<void(const SpecialPoint&)>& on_special,
+                               const std::vector<BranchEvent>& events,
+                               const std::function<void(const LocatedEvent&)>& on_event) {
   const auto state_to_caller = [&](const Eigen::VectorXd& y) {
     return frame.apply_inverse(subspace.expand(y));
   };
   const auto to_caller = [&](BranchSample s) {
-    if (s.x.size() == subspace.dimension()) s.x = state_to_caller(s.x);
+    if (s.x.size() == subspace.dimension()) {
+      s.reduced_x = std::move(s.x);
+      s.reduced_frame = frame;
+      s.x = state_to_caller(s.reduced_x);
+    }
     if (s.tangent_state.size() == subspace.dimension())
       s.tangent_state = frame.rotate_inverse(subspace.expand(s.tangent_state));
     return s;
   };
 
   SymmetricSubspaceFamily reduced(family, subspace);
-  const Eigen::VectorXd y0 = subspace.restrict_to(frame.apply(x0));
   const std::vector<Eigen::Index> pins = subspace.trace_pins(subspace.expand(y0));
   Eigen::VectorXd direction = subspace.restrict_to(frame.rotate(direction_state));
   for (const Eigen::Index d : pins) direction(d) = 0.0;
@@ -78,6 +87,53 @@ BranchTrace trace_branch_in_subspace(const ParametrizedObjective& family,
   for (SpecialPoint& sp : trace.special_points) sp.x = state_to_caller(sp.x);
   for (LocatedEvent& e : trace.events) e.x = state_to_caller(e.x);
   return trace;
+}
+
+}  // namespace
+
+BranchTrace trace_branch_in_subspace(const ParametrizedObjective& family,
+                                     const SymmetricSubspace& subspace,
+                                     const Eigen::Ref<const Eigen::VectorXd>& x0, double lambda0,
+                                     const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                                     double direction_parameter,
+                                     const std::vector<Eigen::Index>& fixed_dofs,
+                                     const ArclengthOptions& options,
+                                     const std::function<void(const BranchSample&)>& on_sample,
+                                     const std::function<void(const SpecialPoint&)>& on_special,
+                                     const std::vector<BranchEvent>& events,
+                                     const std::function<void(const LocatedEvent&)>& on_event) {
+  check_dimensions(family, subspace, x0.size(), direction_state.size(), "trace_branch_in_subspace");
+  const RigidMotion frame = subspace.aligning_motion(x0);
+  return trace_from_reduced(family, subspace, frame, subspace.restrict_to(frame.apply(x0)),
+                            lambda0, direction_state, direction_parameter, fixed_dofs, options,
+                            on_sample, on_special, events, on_event);
+}
+
+BranchTrace resume_branch_in_subspace(const ParametrizedObjective& family,
+                                      const SymmetricSubspace& subspace, const BranchSample& start,
+                                      const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+                                      double direction_parameter,
+                                      const std::vector<Eigen::Index>& fixed_dofs,
+                                      const ArclengthOptions& options,
+                                      const std::function<void(const BranchSample&)>& on_sample,
+                                      const std::function<void(const SpecialPoint&)>& on_special,
+                                      const std::vector<BranchEvent>& events,
+                                      const std::function<void(const LocatedEvent&)>& on_event,
+                                      bool* reduced_start_used) {
+  check_dimensions(family, subspace, start.x.size(), direction_state.size(),
+                   "resume_branch_in_subspace");
+  // The sample's reduced coordinates, if they are of this subspace and still give its x.
+  const bool reduced = start.reduced_x.size() == subspace.dimension() &&
+                       start.reduced_frame.apply_inverse(subspace.expand(start.reduced_x)) ==
+                           start.x;
+  if (reduced_start_used) *reduced_start_used = reduced;
+  if (!reduced)
+    return trace_branch_in_subspace(family, subspace, start.x, start.parameter, direction_state,
+                                    direction_parameter, fixed_dofs, options, on_sample,
+                                    on_special, events, on_event);
+  return trace_from_reduced(family, subspace, start.reduced_frame, start.reduced_x,
+                            start.parameter, direction_state, direction_parameter, fixed_dofs,
+                            options, on_sample, on_special, events, on_event);
 }
 
 }  // namespace growshell

@@ -36,4 +36,22 @@ BranchTrace trace_branch_in_subspace(
     const std::vector<BranchEvent>& events = {},
     const std::function<void(const LocatedEvent&)>& on_event = {});
 
+/// As trace_branch_in_subspace from start.x, for a sample an earlier trace in the same
+/// subspace handed back: where the sample keeps its reduced coordinates (reduced_x of the
+/// subspace's dimension, with reduced_frame^-1(Q reduced_x) equal to start.x bit for bit) the
+/// trace starts from them in that frame, so that with start.next_step as the initial step it
+/// takes the same steps, to the last bit, as the trace that wrote the sample. Otherwise (a
+/// full-space sample, another subspace, a state changed since) it projects start.x as
+/// trace_branch_in_subspace does. `reduced_start_used`, if given, tells which.
+BranchTrace resume_branch_in_subspace(
+    const ParametrizedObjective& family, const SymmetricSubspace& subspace,
+    const BranchSample& start, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
+    double direction_parameter, const std::vector<Eigen::Index>& fixed_dofs,
+    const ArclengthOptions& options,
+    const std::function<void(const BranchSample&)>& on_sample = {},
+    const std::function<void(const SpecialPoint&)>& on_special = {},
+    const std::vector<BranchEvent>& events = {},
+    const std::function<void(const LocatedEvent&)>& on_event = {},
+    bool* reduced_start_used = nullptr);
+
 }  // namespace growshell

@@ -17,8 +17,9 @@ row. Then every
 row of branch.csv must equal the uninterrupted run's to 1e-8 (relative, with an absolute floor
 of 1e-12 for values at rounding, such as the S4 defect of a symmetric state), the arclength
 must go on without a jump or a repeated row, events.json must list the same events at the same
-phi_e, results.json the same key values, and states/ must hold one state per row and no
-temporary. Prints what differs and exits 1 if anything does.
+phi_e, results.json the same key values, and states/ must hold one state per row, no
+temporary, and each state equal to the uninterrupted run's byte for byte (the resumed trace
+takes the very steps of the one that was killed, to the last bit). Prints what differs and exits 1 if anything does.
 """
 
 import csv
@@ -164,6 +165,18 @@ def main():
         if len(states) != len(b) - 1 or any(not n.endswith(".state") for n in states):
             failures.append(f"states/ holds {len(states)} files for {len(b) - 1} rows: "
                             f"{[n for n in states if not n.endswith('.state')]}")
+        # Every saved state (x, its tangent, the next step and the reduced state the symmetric
+        # subspace traced) is the uninterrupted run's, byte for byte.
+        def state_bytes(directory, name):
+            try:
+                with open(os.path.join(directory, "states", name), "rb") as f:
+                    return f.read()
+            except OSError:
+                return None
+        differing = [n for n in states if state_bytes(killed_dir, n) != state_bytes(reference, n)]
+        if differing:
+            failures.append(f"{len(differing)} of {len(states)} saved states differ from the "
+                            f"uninterrupted run's, from {differing[0]} on")
 
     for f in failures:
         print("FAILED:", f)

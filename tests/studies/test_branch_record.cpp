@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -218,14 +220,16 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   s.tangent_state = Eigen::VectorXd::Constant(5, std::sqrt(2.0));
   s.next_step = 0.0125;
   save_branch_state(path("a.state"), s, 42);
-  // header line, n, fingerprint, phi_e, its tangent and the next step, x and dx/ds, hash
-  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 8u + 24u + 2u * 5u * 8u + 8u);
+  // header line, n, fingerprint, phi_e, its tangent and the next step, x and dx/ds, the
+  // reduced state's size (0), hash
+  EXPECT_EQ(fs::file_size(path("a.state")), 18u + 8u + 8u + 24u + 2u * 5u * 8u + 8u + 8u);
   const BranchSample r = load_branch_state(path("a.state"), 5, 42);
   EXPECT_EQ(r.parameter, s.parameter);
   EXPECT_EQ(r.tangent_parameter, s.tangent_parameter);
   EXPECT_EQ(r.next_step, s.next_step);
   EXPECT_EQ(r.x, s.x);  // exact, not to a tolerance
   EXPECT_EQ(r.tangent_state, s.tangent_state);
+  EXPECT_EQ(r.reduced_x.size(), 0);
   auto error_loading = [&](const std::string& file, Eigen::Index n) {
     try {
       load_branch_state(path(file), n);
@@ -256,10 +260,21 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   EXPECT_NO_THROW(load_branch_state(path("a.state"), 5, 0));
   save_branch_state(path("b.state"), s);
   EXPECT_NO_THROW(load_branch_state(path("b.state"), 5, 43));
+  // Version 2 (no reduced state) is still read: its bytes are version 3's without the
+  // reduced state's size, under the version-2 header and with its own hash.
+  std::string v2 = bytes.substr(0, bytes.size() - 16);
+  v2.replace(0, 18, "growshell-state 2\n");
+  const std::uint64_t hash2 = fnv1a_64(v2);
+  v2.append(reinterpret_cast<const char*>(&hash2), sizeof hash2);
+  write(path("v2.state"), v2);
+  const BranchSample second = load_branch_state(path("v2.state"), 5, 42);
+  EXPECT_EQ(second.next_step, s.next_step);
+  EXPECT_EQ(second.x, s.x);
+  EXPECT_EQ(second.reduced_x.size(), 0);
   // Version 1 (no next step) is still read, with the next step 0: its bytes are version 2's
   // without the step, under the version-1 header and with its own hash.
   std::string v1 = bytes.substr(0, 18 + 8 + 8 + 16) + bytes.substr(18 + 8 + 8 + 24);
-  v1.resize(v1.size() - 8);
+  v1.resize(v1.size() - 16);
   v1.replace(0, 18, "growshell-state 1\n");
   const std::uint64_t hash = fnv1a_64(v1);
   v1.append(reinterpret_cast<const char*>(&hash), sizeof hash);
@@ -269,6 +284,45 @@ TEST_F(BranchRecordTest, BinaryStatesRoundTripBitForBitAndNameTheirDamage) {
   EXPECT_EQ(old.parameter, s.parameter);
   EXPECT_EQ(old.x, s.x);
   EXPECT_EQ(old.tangent_state, s.tangent_state);
+}
+
+TEST_F(BranchRecordTest, AReducedStateAndItsFrameRoundTripBitForBit) {
+  // A sample of a trace in a symmetric subspace keeps the reduced state it was traced in and
+  // the frame, so that a resumed trace starts from the same bits (resume_branch_in_subspace).
+  BranchSample s;
+  s.parameter = 5.25;
+  s.x = Eigen::VectorXd::LinSpaced(6, -0.3, 0.9);
+  s.tangent_state = Eigen::VectorXd::Constant(6, 1.0 / 3.0);
+  s.reduced_x = Eigen::VectorXd::LinSpaced(2, std::nextafter(0.1, 1.0), -2.0 / 7.0);
+  s.reduced_frame.rotation = Eigen::AngleAxisd(1e-13, Eigen::Vector3d(1.0, 2.0, 3.0).normalized())
+                                 .toRotationMatrix();
+  s.reduced_frame.translation = Eigen::Vector3d(1e-17, -0.0, 3e-16);
+  save_branch_state(path("r.state"), s, 42);
+  EXPECT_EQ(fs::file_size(path("r.state")),
+            18u + 8u + 8u + 24u + 2u * 6u * 8u + 8u + 12u * 8u + 2u * 8u + 8u);
+  const BranchSample r = load_branch_state(path("r.state"), 6, 42);
+  EXPECT_EQ(r.x, s.x);
+  EXPECT_EQ(r.reduced_x, s.reduced_x);
+  EXPECT_EQ(r.reduced_frame.rotation, s.reduced_frame.rotation);
+  EXPECT_EQ(r.reduced_frame.translation, s.reduced_frame.translation);
+  EXPECT_TRUE(std::signbit(r.reduced_frame.translation(1)));
+  // A reduced state longer than the state is refused on saving, and named as damage on reading.
+  BranchSample wrong = s;
+  wrong.reduced_x = Eigen::VectorXd::Zero(7);
+  EXPECT_THROW(save_branch_state(path("w.state"), wrong), std::invalid_argument);
+  std::string bytes = read(path("r.state"));
+  const std::size_t m_at = 18 + 8 + 8 + 24 + 2 * 6 * 8;
+  const std::int64_t seven = 7;
+  bytes.replace(m_at, 8, reinterpret_cast<const char*>(&seven), 8);
+  write(path("m.state"), bytes);
+  try {
+    load_branch_state(path("m.state"), 6);
+    ADD_FAILURE() << "a reduced state of 7 entries for 6 unknowns was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a reduced state of 7 entries for 6 unknowns"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
