@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace growshell {
@@ -16,19 +17,29 @@ ConeSubspaceChoice cone_mirror_subspace(const ShellModel& model, double radius, 
   }
 }
 
+ConeSubspaceChoice cone_half_turn_subspace(const ShellModel& model, double radius,
+                                           const std::string& branch) {
+  try {
+    return {std::make_shared<const SymmetricSubspace>(half_turn_subspace(model, 1e-9 * radius)),
+            ""};
+  } catch (const std::invalid_argument& e) {
+    return {nullptr, branch + " is traced in the full space: " + e.what()};
+  }
+}
+
 ConeSubspaceChoice subspace_for_start(std::shared_ptr<const SymmetricSubspace> subspace,
                                       const Eigen::Ref<const Eigen::VectorXd>& x,
-                                      double max_asymmetry) {
+                                      double max_asymmetry, const std::string& branch) {
   if (!subspace) return {nullptr, ""};
   const double asymmetry = subspace->aligned_asymmetry(x);
   if (asymmetry <= max_asymmetry) return {std::move(subspace), ""};
   char note[400];
   std::snprintf(note, sizeof note,
-                "the symmetric branch is traced in the full space: its start is %.3g m off its "
-                "mirror image in every frame (more than %.3g m; e.g. a fold pattern turned "
-                "against the mesh)",
+                " is traced in the full space: its start is %.3g m off its image under the "
+                "subspace's symmetry in every frame (more than %.3g m; e.g. a fold pattern "
+                "turned against the mesh)",
                 asymmetry, max_asymmetry);
-  return {nullptr, note};
+  return {nullptr, branch + note};
 }
 
 }  // namespace growshell

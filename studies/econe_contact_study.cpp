@@ -188,6 +188,8 @@ class EconeContactRun {
   void save_stages() const;
   /// What this run's stages 2-6 found so far (written to stage_record_path() after each), and
   /// what a resumed study's record holds for the same scene and start (empty otherwise).
+  /// The half-turn subspace of the skewed and turned cone (null: the full space).
+  std::shared_ptr<const SymmetricSubspace> half_turn_;
   EconeStageRecord stages_;
   std::optional<EconeStageRecord> recorded_;
   /// The orientation check's lowest relaxed state that breaks S4 (empty if none): the start of
@@ -222,6 +224,9 @@ EconeContactRun::EconeContactRun(const Scene& scene, ExistingOutput existing,
   h_ = thickness_at_radius(scene_.thickness, 0.0, scene_.geometry.radius);
   if (existing_ == ExistingOutput::Resume && fs::exists(fs::path(dir_) / kConeDir / "scene.json"))
     check_resumable_scene((fs::path(dir_) / kConeDir).string(), econe_contact_cone_scene(scene_));
+  // A resumed study's record of stages 2-6, read (and a malformed one refused) before
+  // anything is written; its key is compared once the cone has given the start (run()).
+  if (existing_ == ExistingOutput::Resume) recorded_ = read_econe_stage_record(stage_record_path());
 }
 
 /// Stage 1: the contact-free cone up to first contact, and its last state.
@@ -280,6 +285,13 @@ void EconeContactRun::set_up_contact() {
     choice = subspace_for_start(std::move(choice.subspace), start_.x, 0.1 * h_);
     if (!choice.note.empty()) say("# " + choice.note);
     c.symmetric_subspace = std::move(choice.subspace);
+  }
+  if (st.half_turn_subspace) {
+    ConeSubspaceChoice choice =
+        cone_half_turn_subspace(*model_, scene_.geometry.radius, "the skewed and turned cone");
+    if (!choice.note.empty()) say("# " + choice.note);
+    half_turn_ = std::move(choice.subspace);
+    options_.skewed_subspace = half_turn_;
   }
 
   options_.symmetric_end = scene_.continuation.phi_max;
@@ -726,9 +738,13 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Fresh);
   say("# stage 5: the cone turned by " + fixed(turned_turn_deg_, 3) +
       " deg against the mesh and relaxed at phi_e = " + fixed(phi0, 6) +
-      ", traced down and up in the full space");
+      ", traced down and up");
   ContactBranchOptions o = options_.contact;
-  o.symmetric_subspace = nullptr;  // it breaks the mirrors
+  // It breaks the mirrors and keeps the half turn.
+  ConeSubspaceChoice choice = subspace_for_start(half_turn_, turned_start_,
+                                                 0.1 * o.contact_distance, "the turned cone");
+  if (!choice.note.empty()) say("# " + choice.note);
+  o.symmetric_subspace = std::move(choice.subspace);
   o.arclength.parameter_min = options_.skewed_min;
   o.arclength.parameter_max = options_.symmetric_end;
   o.arclength.max_steps = options_.max_steps_per_branch;
@@ -1118,13 +1134,10 @@ EconeContactResults EconeContactRun::run() {
   // What the stages after the cone found, from a resumed study's record of the same scene
   // and start (studies/econe_stage_record.hpp); this run's record starts from the key alone.
   stages_.key = econe_stage_key(scene_, start_);
-  if (existing_ == ExistingOutput::Resume) {
-    recorded_ = read_econe_stage_record(stage_record_path());
-    if (recorded_ && recorded_->key != stages_.key) {
-      say("# stages.json was recorded from another scene or another start of the contact era: "
-          "stages 2-6 are traced afresh");
-      recorded_.reset();
-    }
+  if (recorded_ && recorded_->key != stages_.key) {
+    say("# stages.json was recorded from another scene or another start of the contact era: "
+        "stages 2-6 are traced afresh");
+    recorded_.reset();
   }
   const EconeBranchResult traced = contact_branches();
   summarize(traced);

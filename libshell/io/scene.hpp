@@ -237,6 +237,14 @@ struct SceneStudy {
   /// turn would take in the full space; a mesh without the mirrors (gmsh) is traced in the
   /// full space, with a note.
   bool symmetric_subspace = true;
+  /// econe_contact: trace the skewed and the turned cone among the states with the half turn
+  /// about the growth axis, which they keep while breaking both mirrors (docs/continuation.md,
+  /// "Symmetric subspace"); half the unknowns, and the stability index stays the full
+  /// Hessian's. A mesh without the half turn, or a start without it, is traced in the full
+  /// space, with a note. Off by default: on the ctest's scene these traces end at a segment
+  /// start after a pair-set rebuild (the skewed branch at 6.92 instead of its fold at 5.27),
+  /// where the full space goes on.
+  bool half_turn_subspace = false;
   /// Count the stability index without the pattern's turn about the growth axis: the neutral
   /// mode of the axisymmetric sheet that a discrete mesh leaves only nearly neutral, of either
   /// sign (docs/guide/cone_branch.md, "Stability index").

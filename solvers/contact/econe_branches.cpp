@@ -249,6 +249,18 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
     if (best.size() > 0) {
       out.skewed_found = true;
       out.skewed_relaxed_energy = best_energy;
+      if (options.skewed_subspace) {
+        const double asymmetry = options.skewed_subspace->aligned_asymmetry(best);
+        if (asymmetry <= 0.1 * h_c) {
+          skewed_options.symmetric_subspace = options.skewed_subspace;
+        } else {
+          std::ostringstream a;
+          a << "the skewed branch is traced in the full space: the relaxed state is " << asymmetry
+            << " m off its image under the subspace's symmetry (more than " << 0.1 * h_c
+            << " m)";
+          note(a.str());
+        }
+      }
       // Downwards until the branch ends at a fold; the part beyond it comes back up, and the
       // trace stops when that part reaches the relaxed state's phi_e again.
       ContactBranchOptions down_options = skewed_options;

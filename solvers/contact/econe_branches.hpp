@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ struct EconeBranchOptions {
   /// contact a whole radian below first contact.
   double skewed_min = std::numeric_limits<double>::quiet_NaN();
   int max_steps_per_branch = 600;
+  /// If set (e.g. half_turn_subspace), the skewed branch is traced in it from a relaxed state
+  /// that has its symmetry to a tenth of the contact distance in some frame; from one that
+  /// has not, in the full space, with a note. The stability index stays the full Hessian's.
+  std::shared_ptr<const SymmetricSubspace> skewed_subspace;
   bool trace_skewed = true;  ///< false: the symmetric branch only
   SkewedStart skewed_start = SkewedStart::Top;
   /// Top: the symmetric state pushed and relaxed is the first sample at or beyond this phi_e

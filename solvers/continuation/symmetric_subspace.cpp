@@ -183,6 +183,8 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
     throw std::invalid_argument("SymmetricSubspace::aligning_motion: need " +
                                 std::to_string(full_dimension()) + " entries");
   const Eigen::Index nv = x.size() / 3;
+  if (generators_.size() == 1 && (generators_[0].signs.array() < 0.0).count() == 2)
+    return half_turn_aligning_motion(x);
   std::vector<int> axes;
   std::vector<Eigen::Vector3d> normals;
   for (const VertexSymmetry& g : generators_) {
@@ -229,6 +231,36 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
   return motion;
 }
 
+RigidMotion SymmetricSubspace::half_turn_aligning_motion(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const VertexSymmetry& g = generators_[0];
+  int axis = 0;
+  g.signs.maxCoeff(&axis);
+  // For a state with the half turn about the line c + t u, x_v - x_image(v) = 2 P(x_v - c),
+  // P the projector onto the plane normal to u: the differences span that plane, and u is
+  // the direction in which they have no extent.
+  const Eigen::Index nv = x.size() / 3;
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const Eigen::Vector3d d =
+        x.segment<3>(3 * v) - x.segment<3>(3 * g.image[static_cast<std::size_t>(v)]);
+    scatter += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
+  Eigen::Vector3d u = eigen.eigenvectors().col(0);
+  if (u(axis) < 0.0) u = -u;
+  RigidMotion motion;
+  motion.rotation =
+      Eigen::Quaterniond::FromTwoVectors(u, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+  // Centre across the axis: a vertex set with the half turn has its mean on the axis.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (Eigen::Index v = 0; v < nv; ++v) mean += motion.rotation * x.segment<3>(3 * v);
+  mean /= static_cast<double>(nv);
+  for (int c = 0; c < 3; ++c)
+    if (c != axis) motion.translation(c) = -mean(c);
+  return motion;
+}
+
 SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int>& axes,
                                   double tolerance) {
   if (axes.empty()) throw std::invalid_argument("mirror_subspace: no mirror axes");
@@ -253,6 +285,17 @@ SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int
 
 SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance) {
   return mirror_subspace(model, {0, 1}, tolerance);
+}
+
+SymmetricSubspace half_turn_subspace(const ShellModel& model, double tolerance) {
+  const Eigen::VectorXd& X = model.reference_positions();
+  const Eigen::Index nv = X.size() / 3;
+  const Eigen::MatrixX3d points =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), nv, 3);
+  const VertexSymmetry half_turn = half_turn_symmetry(points, 2, tolerance);
+  check_maps_faces_onto_faces(model.topology(), half_turn);
+  // No pin configuration: the pins are chosen at each trace's start (see the header).
+  return SymmetricSubspace(nv, {half_turn});
 }
 
 }  // namespace growshell

@@ -70,8 +70,12 @@ class SymmetricSubspace {
   /// nearest the coordinate axis it goes to; R maps the normals onto their axes (for one
   /// mirror the shortest such rotation), and t centres the state along each mirror axis.
   /// Applied to a symmetric state, the result lies in the subspace up to its own asymmetry.
-  /// Throws std::invalid_argument if a generator is not a mirror (exactly one sign -1), two
-  /// mirrors share an axis, or x has the wrong size.
+  /// For a subspace of one half turn about a coordinate axis (half_turn_subspace) it is the
+  /// motion that brings the state's own half-turn axis onto that one: the axis's direction is
+  /// the one in which the differences x_v - x_{image[v]} have no extent (the shortest rotation
+  /// takes it to the coordinate axis), and t centres the state across it. Throws
+  /// std::invalid_argument if the generators are neither mirrors (exactly one sign -1) nor a
+  /// single half turn, two mirrors share an axis, or x has the wrong size.
   RigidMotion aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
   /// asymmetry(aligning_motion(x).apply(x)): how far x is from the subspace in any frame (m).
@@ -83,6 +87,8 @@ class SymmetricSubspace {
   }
 
  private:
+  RigidMotion half_turn_aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
   std::vector<VertexSymmetry> generators_;
   Eigen::SparseMatrix<double> basis_;
   int group_order_ = 1;
@@ -107,5 +113,19 @@ SymmetricSubspace mirror_subspace(const ShellModel& model, const std::vector<int
 /// control mesh lacks either mirror within `tolerance` (m), e.g. for a growth centre off the
 /// origin or for the annulus mesh, whose cells are all split along the same diagonal.
 SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance);
+
+/// The states of `model` (all control points, vertex-major) with the half turn about the
+/// z-axis, (x, y, z) -> (-x, -y, z): the skewed n = 2 e-cone, which breaks both mirrors of the
+/// symmetric one, keeps it (measured to 1e-8 of the radius along the h = 0.02 skewed branch,
+/// docs/continuation.md, "Symmetric subspace"), and so do the cone turned against the mesh and
+/// the wound cone. Two rigid motions stay in it (the translation along z and the rotation about
+/// z). It has no pin configuration, so a trace pins the dofs where the start's own rigid fields
+/// are largest: pins chosen on the flat reference hold the rotation about z by a rim vertex
+/// that the skewed cone has carried round, and the rotation is then nearly free (measured on
+/// the ctest's scene: every step of the skewed trace became a rigid turn of 0.17 deg with a
+/// shape change 60 times smaller than the turn's). Throws std::invalid_argument
+/// naming a vertex or a face if the reference control mesh lacks the half turn within
+/// `tolerance` (m).
+SymmetricSubspace half_turn_subspace(const ShellModel& model, double tolerance);
 
 }  // namespace growshell

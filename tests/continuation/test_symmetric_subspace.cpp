@@ -3,6 +3,8 @@
 //    of the unknowns (up to the dofs on the mirror axes);
 //  - rigid-motion pins: one for two mirrors (the translation along z), three for one mirror;
 //  - aligning_motion brings a turned and moved symmetric state back into the subspace;
+//  - the half turn about z: the subspace of the skewed cone's states, its two rigid pins and
+//    its alignment;
 //  - the restricted family's gradient and Hessian are the derivatives of its energy (finite
 //    differences), and Q^T of the full ones;
 //  - bad generators and meshes without the symmetry are named.
@@ -189,10 +191,58 @@ TEST(SymmetricSubspace, AligningMotionBringsATurnedSymmetricStateBack) {
   // (here at most a translation along z and half turns), so pairwise distances agree.
   EXPECT_NEAR((aligned.segment<3>(0) - aligned.segment<3>(30)).norm(),
               (x.segment<3>(0) - x.segment<3>(30)).norm(), 1e-12);
-  // A generator that is not a mirror cannot be aligned by normals.
+  // Generators that are neither mirrors nor a single half turn are not aligned.
   const Eigen::MatrixX3d P = as_rows(model.reference_positions());
-  const SymmetricSubspace half_turn(P.rows(), {half_turn_symmetry(P, 2, 1e-9)});
-  EXPECT_THROW(half_turn.aligning_motion(x), std::invalid_argument);
+  const SymmetricSubspace mixed(P.rows(),
+                                {half_turn_symmetry(P, 2, 1e-9), mirror_symmetry(P, 1, 1e-9)});
+  EXPECT_THROW(mixed.aligning_motion(x), std::invalid_argument);
+}
+
+/// A state with the half turn about z and neither mirror, as a skewed cone: the saddle and
+/// bowl of symmetric_state plus an xy term, and an in-plane twist growing with r^2.
+Eigen::VectorXd skewed_state(const ShellModel& model) {
+  Eigen::VectorXd x = symmetric_state(model, 0.3, 0.2);
+  const Eigen::VectorXd& X = model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const double px = X(3 * v), py = X(3 * v + 1), r2 = px * px + py * py;
+    x(3 * v) -= 0.1 * py * r2;
+    x(3 * v + 1) += 0.1 * px * r2;
+    x(3 * v + 2) += 0.15 * px * py;
+  }
+  return x;
+}
+
+TEST(SymmetricSubspace, HalfTurnSubspaceHoldsTheSkewedStatesAndAlignsThem) {
+  ShellModel model = small_disc();
+  const SymmetricSubspace sub = half_turn_subspace(model, 1e-9);
+  EXPECT_EQ(sub.group_order(), 2);
+  // Every vertex but the centre has an orbit of 2 (3 reduced dofs per orbit); the centre keeps
+  // only z.
+  const Eigen::Index nv = model.dimension() / 3;
+  EXPECT_EQ(sub.dimension(), 3 * (nv - 1) / 2 + 1);
+  const Eigen::VectorXd x = skewed_state(model);
+  EXPECT_LT(sub.asymmetry(x), 1e-14);
+  EXPECT_GT(two_mirror_subspace(model, 1e-9).asymmetry(x), 1e-3);  // it breaks the mirrors
+  // The translation along z and the rotation about z stay in it: two pins, chosen on the
+  // trace's start (no pin configuration).
+  EXPECT_EQ(sub.rigid_motion_pins(x).size(), 2u);
+  EXPECT_EQ(sub.trace_pins(x), sub.rigid_motion_pins(x));
+  // Turned about a tilted axis and moved, it is brought back onto the half turn about z.
+  RigidMotion turn;
+  turn.rotation =
+      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized())).toRotationMatrix();
+  turn.translation = Eigen::Vector3d(0.3, -0.1, 0.2);
+  const Eigen::VectorXd turned = turn.apply(x);
+  ASSERT_GT(sub.asymmetry(turned), 0.1);
+  const RigidMotion back = sub.aligning_motion(turned);
+  EXPECT_LT(sub.asymmetry(back.apply(turned)), 1e-12);
+  EXPECT_LT(sub.aligned_asymmetry(turned), 1e-12);
+  EXPECT_NEAR(back.rotation.determinant(), 1.0, 1e-12);
+  // A state without the half turn stays off it in every frame.
+  Eigen::VectorXd odd = x;  // z odd in x: not a rigid tilt, and the half turn flips it
+  const Eigen::VectorXd& X = model.reference_positions();
+  for (Eigen::Index v = 0; v < nv; ++v) odd(3 * v + 2) += 0.05 * X(3 * v) * X(3 * v) * X(3 * v);
+  EXPECT_GT(sub.aligned_asymmetry(odd), 1e-3);
 }
 
 TEST(SymmetricSubspace, RestrictedFamilyHasTheDerivativesOfItsEnergy) {

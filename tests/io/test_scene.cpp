@@ -100,6 +100,7 @@ TEST(Scene, DefaultsAreThePapersDisc) {
   EXPECT_EQ(s.study.max_tangent_angle, 0.3);
   EXPECT_EQ(s.study.eigenmodes, 2);
   EXPECT_TRUE(s.study.symmetric_subspace);
+  EXPECT_FALSE(s.study.half_turn_subspace);
   EXPECT_TRUE(s.study.index_excludes_pattern_turn);
   EXPECT_EQ(s.study.symmetry_threshold, 1e-3);
   EXPECT_EQ(s.study.core_radius, 0.0);
@@ -157,6 +158,7 @@ Scene everything_changed() {
   s.study.max_tangent_angle = 0.8;
   s.study.eigenmodes = 0;
   s.study.symmetric_subspace = true;
+  s.study.half_turn_subspace = true;
   s.study.symmetry_threshold = 1.0 / 3.0;
   s.study.core_radius = 0.05;
   return s;
@@ -298,6 +300,7 @@ TEST_F(SceneFileTest, FullFileRoundTripKeepsEveryField) {
   EXPECT_EQ(b.study.max_tangent_angle, a.study.max_tangent_angle);
   EXPECT_EQ(b.study.eigenmodes, a.study.eigenmodes);
   EXPECT_EQ(b.study.symmetric_subspace, a.study.symmetric_subspace);
+  EXPECT_EQ(b.study.half_turn_subspace, a.study.half_turn_subspace);
   EXPECT_EQ(b.study.symmetry_threshold, a.study.symmetry_threshold);
   EXPECT_EQ(b.study.core_radius, a.study.core_radius);
   EXPECT_EQ(scene_to_json(b), scene_to_json(a));

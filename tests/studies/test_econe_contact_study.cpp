@@ -325,5 +325,23 @@ TEST_F(EconeContact, ResumeRefusesASceneThatDoesNotFitTheRecordedCone) {
   EXPECT_EQ(listing("run/cone"), (std::vector<std::string>{"record.json", "scene.json"}));
 }
 
+TEST_F(EconeContact, ResumeRefusesAMalformedStageRecordBeforeWritingAnything) {
+  // The cone's record is fine; the record of stages 2-6 was damaged by hand.
+  Scene scene = default_scene();
+  scene.study.kind = StudyKind::EconeContact;
+  scene.output.directory = path("run");
+  std::filesystem::create_directories(path("run/cone"));
+  write(path("run/cone/scene.json"), scene_to_json(econe_contact_cone_scene(scene)));
+  write(path("run/cone/record.json"), "{}");
+  write(path("run/stages.json"), "{\"format\": 1, \"key\": ");
+  const std::string message = error_of<std::runtime_error>(
+      [&] { run_econe_contact_study(scene, ExistingOutput::Resume); });
+  EXPECT_NE(message.find(path("run/stages.json")), std::string::npos) << message;
+  EXPECT_NE(message.find("not JSON"), std::string::npos) << message;
+  // Refused before the study's scene.json or any stage was written.
+  EXPECT_EQ(listing("run"), (std::vector<std::string>{"cone", "stages.json"}));
+  EXPECT_EQ(listing("run/cone"), (std::vector<std::string>{"record.json", "scene.json"}));
+}
+
 }  // namespace
 }  // namespace growshell
