@@ -14,6 +14,19 @@ namespace growshell {
 
 namespace {
 
+/// The eigenvectors (ascending eigenvalues) of sum_v d_v d_v^T, d_v = x_v - x_{image[v]}: the
+/// directions in which a state differs from its image under g, largest last.
+Eigen::Matrix3d difference_directions(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                      const VertexSymmetry& g) {
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const Eigen::Vector3d d =
+        x.segment<3>(3 * v) - x.segment<3>(3 * g.image[static_cast<std::size_t>(v)]);
+    scatter += d * d.transpose();
+  }
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors();
+}
+
 bool same(const VertexSymmetry& a, const VertexSymmetry& b) {
   return a.signs == b.signs && a.image == b.image;
 }
@@ -196,14 +209,7 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
     if (std::find(axes.begin(), axes.end(), axis) != axes.end())
       throw std::invalid_argument("SymmetricSubspace::aligning_motion: two mirrors about axis " +
                                   std::to_string(axis));
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (Eigen::Index v = 0; v < nv; ++v) {
-      const Eigen::Vector3d d =
-          x.segment<3>(3 * v) - x.segment<3>(3 * g.image[static_cast<std::size_t>(v)]);
-      scatter += d * d.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
-    Eigen::Vector3d n = eigen.eigenvectors().col(2);
+    Eigen::Vector3d n = difference_directions(x, g).col(2);
     if (n(axis) < 0.0) n = -n;
     axes.push_back(axis);
     normals.push_back(n);
@@ -240,14 +246,7 @@ RigidMotion SymmetricSubspace::half_turn_aligning_motion(
   // P the projector onto the plane normal to u: the differences span that plane, and u is
   // the direction in which they have no extent.
   const Eigen::Index nv = x.size() / 3;
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (Eigen::Index v = 0; v < nv; ++v) {
-    const Eigen::Vector3d d =
-        x.segment<3>(3 * v) - x.segment<3>(3 * g.image[static_cast<std::size_t>(v)]);
-    scatter += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter);
-  Eigen::Vector3d u = eigen.eigenvectors().col(0);
+  Eigen::Vector3d u = difference_directions(x, g).col(0);
   if (u(axis) < 0.0) u = -u;
   RigidMotion motion;
   motion.rotation =

@@ -50,6 +50,15 @@ Eigen::VectorXd symmetric_state(const ShellModel& model, double a, double b) {
   return x;
 }
 
+/// x turned by 0.7 rad about a tilted axis and moved.
+Eigen::VectorXd turned_and_moved(const Eigen::VectorXd& x) {
+  RigidMotion turn;
+  turn.rotation =
+      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized())).toRotationMatrix();
+  turn.translation = Eigen::Vector3d(0.3, -0.1, 0.2);
+  return turn.apply(x);
+}
+
 TEST(SymmetricSubspace, TwoMirrorBasisIsOrthonormalAndSpansTheSymmetricStates) {
   ShellModel model = small_disc();
   const SymmetricSubspace sub = two_mirror_subspace(model, 1e-9);
@@ -176,11 +185,7 @@ TEST(SymmetricSubspace, AligningMotionBringsATurnedSymmetricStateBack) {
   ShellModel model = small_disc();
   const SymmetricSubspace sub = two_mirror_subspace(model, 1e-9);
   const Eigen::VectorXd x = symmetric_state(model, 0.3, 0.2);
-  RigidMotion turn;
-  turn.rotation =
-      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized())).toRotationMatrix();
-  turn.translation = Eigen::Vector3d(0.3, -0.1, 0.2);
-  const Eigen::VectorXd turned = turn.apply(x);
+  const Eigen::VectorXd turned = turned_and_moved(x);
   ASSERT_GT(sub.asymmetry(turned), 0.1);
   const RigidMotion back = sub.aligning_motion(turned);
   const Eigen::VectorXd aligned = back.apply(turned);
@@ -228,11 +233,7 @@ TEST(SymmetricSubspace, HalfTurnSubspaceHoldsTheSkewedStatesAndAlignsThem) {
   EXPECT_EQ(sub.rigid_motion_pins(x).size(), 2u);
   EXPECT_EQ(sub.trace_pins(x), sub.rigid_motion_pins(x));
   // Turned about a tilted axis and moved, it is brought back onto the half turn about z.
-  RigidMotion turn;
-  turn.rotation =
-      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized())).toRotationMatrix();
-  turn.translation = Eigen::Vector3d(0.3, -0.1, 0.2);
-  const Eigen::VectorXd turned = turn.apply(x);
+  const Eigen::VectorXd turned = turned_and_moved(x);
   ASSERT_GT(sub.asymmetry(turned), 0.1);
   const RigidMotion back = sub.aligning_motion(turned);
   EXPECT_LT(sub.asymmetry(back.apply(turned)), 1e-12);
