@@ -25,10 +25,30 @@ declare -A skip=(
   [tests_subdivision]="-IrregularGeometry/*:ElementLatticeSampling.*"
   [tests_studies]="-PatternOrientationCheck.*:TurnFreeStabilityIndex.IsTheSameForEveryRigidPlacementOfTheCone"
 )
-for t in "${tests[@]}"; do
-  filter="${skip[$t]:-*}"
-  echo "run_sanitizers.sh: $t"
-  "build-fuzz/tests/$t" --gtest_brief=1 --gtest_filter="$filter"
+# Two test executables at a time (each is single-threaded under the sanitizers), each into its
+# own log, printed whole if it fails.
+mkdir -p build-fuzz/sanitizer-logs
+declare -A test_pid=()
+run_test() {
+  local t="$1"
+  "build-fuzz/tests/$t" --gtest_brief=1 --gtest_filter="${skip[$t]:-*}" \
+    >"build-fuzz/sanitizer-logs/$t.log" 2>&1 &
+  test_pid[$t]=$!
+}
+finish_test() {
+  local t="$1"
+  if ! wait "${test_pid[$t]}"; then
+    cat "build-fuzz/sanitizer-logs/$t.log"
+    echo "run_sanitizers.sh: $t failed" >&2
+    exit 1
+  fi
+  echo "run_sanitizers.sh: $t: $(grep -E '^\[  PASSED  \]' "build-fuzz/sanitizer-logs/$t.log")"
+}
+for ((i = 0; i < ${#tests[@]}; i += 2)); do
+  run_test "${tests[i]}"
+  if ((i + 1 < ${#tests[@]})); then run_test "${tests[i + 1]}"; fi
+  finish_test "${tests[i]}"
+  if ((i + 1 < ${#tests[@]})); then finish_test "${tests[i + 1]}"; fi
 done
 
 # The three fuzzers side by side, each for FUZZ_SECONDS of wall time (on two cores each gets
