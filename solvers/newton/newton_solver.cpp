@@ -22,6 +22,10 @@ constexpr double kEnergyNoise = 128.0 * std::numeric_limits<double>::epsilon();
 // matrix positive definite; failing there means the factorisation itself is broken.
 constexpr double kShiftCapOverGershgorin = 1e3;
 
+// NewtonOptions::adaptive_shift: the first shift tried after the unshifted Hessian failed and no
+// earlier shift is known, relative to the mean |diagonal|.
+constexpr double kAdaptiveFirstShift = 1e-4;
+
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
 std::string sci(double v) {
@@ -135,6 +139,7 @@ NewtonResult NewtonSolver::minimize(SparseObjective& objective,
   Eigen::VectorXd gradient_trial(n);
   Eigen::VectorXd row_abs_sum(n);
   double last_shift = 0.0;
+  double last_alpha = 1.0;
   result.log.reserve(static_cast<size_t>(std::min(opt.max_iterations, 256)));
 
   auto fail_at_best = [&](NewtonStatus status, const std::string& message) {
@@ -174,17 +179,32 @@ NewtonResult NewtonSolver::minimize(SparseObjective& objective,
         kShiftCapOverGershgorin * std::max(row_abs_sum.maxCoeff(), mean_diagonal);
 
     // Shift sequence: start one growth factor below the last successful shift, trying the
-    // unshifted Hessian first once that start falls below the smallest meaningful shift.
+    // unshifted Hessian first once that start falls below the smallest meaningful shift
+    // (adaptive_shift: as the last line search says, see NewtonOptions).
     const double shift_floor = opt.shift_initial_factor * mean_diagonal;
-    const double shift_start = last_shift / opt.shift_growth;
+    double shift_start = last_shift / opt.shift_growth;
+    bool try_unshifted = shift_start < shift_floor;
+    if (opt.adaptive_shift) {
+      try_unshifted = last_shift <= kAdaptiveFirstShift * mean_diagonal &&
+                      (last_alpha == 1.0 || last_shift == 0.0);
+      if (last_alpha < 0.25)
+        shift_start = std::max(last_shift, shift_floor) * opt.shift_growth;
+      else if (last_alpha < 1.0)
+        shift_start = last_shift;
+      // Without a shift to go by (the last Hessian was positive definite), an indefinite one
+      // is shifted from 1e-4 of its mean diagonal up rather than from the numerical zero: a
+      // negative curvature that small is a nearly free mode, not worth eight factorisations.
+      shift_start = std::max(shift_start, last_shift == 0.0 ? kAdaptiveFirstShift * mean_diagonal
+                                                            : shift_floor);
+    }
     int attempts = 0;
     bool factorized = false;
     double shift = 0.0;
-    if (shift_start < shift_floor) {
+    if (try_unshifted) {
       ++attempts;
       ++result.factorizations;
       factorized = cholesky.factorize(hessian, 0.0).positive_definite;
-      shift = factorized ? 0.0 : shift_floor;
+      shift = factorized ? 0.0 : std::max(shift_start, shift_floor);
     } else {
       shift = shift_start;
     }
@@ -258,6 +278,7 @@ NewtonResult NewtonSolver::minimize(SparseObjective& objective,
                               " trials (last step length " + sci(2.0 * alpha) + ", shift " +
                               sci(shift) + ") at " + where());
     }
+    last_alpha = alpha;
     x.swap(x_trial);
     gradient.swap(gradient_trial);
     energy = trial_energy;

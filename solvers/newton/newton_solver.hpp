@@ -46,6 +46,16 @@ struct NewtonOptions {
   double shift_initial_factor = 1e-10;
   /// Factor by which the shift grows after a failed factorisation; > 1.
   double shift_growth = 10.0;
+  /// Levenberg-Marquardt-like control of the shift by the line search, for energies whose
+  /// quadratic model fails within a Newton step (a contact penalty's kinks): after a full step
+  /// the next iteration tries the unshifted Hessian first and, if it is not positive definite,
+  /// starts one growth factor below the last shift; after a step the line search cut to
+  /// between 1/4 and 1 it starts from the last shift; after one cut below 1/4, from a shift
+  /// shift_growth times larger (the model was not trusted that far). An indefinite Hessian
+  /// after a positive definite one is shifted from 1e-4 of the mean |diagonal| up. Off: every
+  /// iteration starts one growth factor below the last shift, trying the unshifted Hessian only
+  /// once that start falls below the numerical zero.
+  bool adaptive_shift = false;
 };
 
 /// Record of one accepted Newton iteration.

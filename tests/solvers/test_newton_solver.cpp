@@ -110,6 +110,31 @@ class DoubleWellChain : public ChainObjective {
   double c_;
 };
 
+// The double well with a stiff one-sided wall at x_i = 0.9 (a contact penalty in miniature):
+// f = sum (x_i^2 - 1)^2 + c (x_{i+1} - x_i)^2 + k/2 max(0, x_i - 0.9)^2. Its Hessian jumps by
+// k where a coordinate crosses the wall, so the quadratic model of a step that crosses it
+// fails and the line search cuts the step.
+class WalledDoubleWellChain : public DoubleWellChain {
+ public:
+  WalledDoubleWellChain(Eigen::Index n, double c, double k) : DoubleWellChain(n, c), k_(k) {}
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* h) override {
+    double f = DoubleWellChain::evaluate(x, g, h);
+    for (Eigen::Index i = 0; i < n_; ++i) {
+      const double over = x[i] - kWall;
+      if (over <= 0.0) continue;
+      f += 0.5 * k_ * over * over;
+      if (g) (*g)[i] += k_ * over;
+      if (h) h->coeffRef(i, i) += k_;
+    }
+    return f;
+  }
+  static constexpr double kWall = 0.9;
+
+ private:
+  double k_;
+};
+
 // Nonlinear springs between neighbours: f = sum phi(x_{i+1} - x_i), phi(d) = d^2/2 + d^4/4.
 // Singular without fixed dofs (translation invariant).
 class SpringChain : public ChainObjective {
@@ -300,6 +325,56 @@ TEST(NewtonSolver, NonConvexDoubleWellReachesAStableMinimumWithShifts) {
     }
   }
   EXPECT_GE(checked, 2);
+}
+
+// NewtonOptions::adaptive_shift on a nonconvex energy with a stiff wall, against the default
+// schedule: both end at a strict minimum with every coordinate in a well (those of the upper
+// well held at the wall); with the option every iteration after a step the line search cut
+// below 1/4 starts from a shift shift_growth times the last one, and after a cut to between
+// 1/4 and 1 from the last one, so its shift never falls there, while the default schedule
+// lowers it after every step.
+TEST(NewtonSolver, AdaptiveShiftRaisesTheShiftAfterShortStepsAndStillReachesTheMinimum) {
+  const Eigen::Index n = 20;
+  WalledDoubleWellChain f(n, 0.1, 1e4);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-10;
+  options.max_iterations = 500;
+  NewtonOptions adaptive = options;
+  adaptive.adaptive_shift = true;
+  const NewtonResult plain = NewtonSolver(options).minimize(f, near_saddle(n));
+  const NewtonResult fast = NewtonSolver(adaptive).minimize(f, near_saddle(n));
+  for (const NewtonResult* r : {&plain, &fast}) {
+    ASSERT_TRUE(r->converged()) << r->message;
+    Eigen::SparseMatrix<double> h = f.hessian_pattern();
+    Eigen::VectorXd g(n);
+    f.evaluate(r->x, &g, &h);
+    EXPECT_LE(g.lpNorm<Eigen::Infinity>(), 1e-10);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense_symmetric(h));
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 1.0);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      // Upper well: at the wall, pressed in by about the well's pull over k (< 1e-3).
+      if (r->x[i] > 0.0)
+        EXPECT_NEAR(r->x[i], WalledDoubleWellChain::kWall, 1e-3) << "x_" << i;
+      else
+        EXPECT_NEAR(r->x[i], -1.0, 0.2) << "x_" << i;
+    }
+  }
+  // Iterations after a cut step whose shift fell below the rule's start.
+  const auto fallen_after_cut_steps = [&](const NewtonResult& r) {
+    int fallen = 0, cut = 0;
+    for (std::size_t k = 1; k < r.log.size(); ++k) {
+      const NewtonIterate& before = r.log[k - 1];
+      if (before.step_length >= 1.0 || before.shift == 0.0) continue;
+      ++cut;
+      const double start = before.step_length < 0.25 ? options.shift_growth * before.shift
+                                                      : before.shift;
+      fallen += r.log[k].shift < start * (1.0 - 1e-12);
+    }
+    EXPECT_GT(cut, 3);  // the wall cuts steps on both schedules
+    return fallen;
+  };
+  EXPECT_EQ(fallen_after_cut_steps(fast), 0);
+  EXPECT_GT(fallen_after_cut_steps(plain), 0);
 }
 
 TEST(NewtonSolver, FixedDofsStayPutAndReportReactions) {
