@@ -31,6 +31,7 @@
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
 #include "studies/econe_stage_record.hpp"
+#include "studies/econe_winding_options.hpp"
 #include "studies/ground_state_exchange.hpp"
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
@@ -1011,18 +1012,7 @@ void EconeContactRun::wind_up() {
       " cone's highest stable state at phi_e = " + fixed(start.phi, 6) + " to " +
       fixed(target, 6) + ", a minimum at every step" +
       (resumed ? " (resumed from its record, " + std::to_string(wound_->rows()) + " states)" : ""));
-  ContactGrowthOptions growth;
-  growth.contact = options_.contact;
-  growth.contact.symmetric_subspace = nullptr;
-  // Every triangle near a proxy vertex, not only the nearest: as the sheet winds, layers slide
-  // over layers, and a vertex between two of them must be held by both.
-  growth.contact.selection = NearPairSelection{false, false};
-  growth.newton = options_.relaxation;
-  // Steps bounded to h/4 per dof: where a stable state ends the sheet slides a long way (layers
-  // over layers) to the next one, and unbounded Newton steps push vertices through a layer.
-  growth.newton.max_step_inf_norm = 0.25 * h_;
-  growth.newton.max_iterations = 5000;
-  growth.max_step = std::min(0.05, scene_.continuation.max_step);
+  ContactGrowthOptions growth = econe_winding_options(scene_, *model_, *proxy_);
   std::vector<double> stops = scene_.study.wind_shapes_at;
   stops.push_back(target);
   std::sort(stops.begin(), stops.end());
@@ -1049,10 +1039,18 @@ void EconeContactRun::wind_up() {
   std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, start.x, pinned_, growth.contact);
   Eigen::VectorXd x = start.x;
   double phi = start.phi;
+  // The accepted state before x, from which the path's secant predictor extrapolates: none at
+  // the start; on a resume the committed state before the last one (or the start).
+  BranchSample before;
   w.highest_phi = phi;
   if (resumed) {
     const BranchSample last = load_branch_state(wound_dir + "/" + wound_->last_state(),
                                                 model_->dimension(), fingerprint_);
+    const std::vector<fs::path> saved = saved_state_files(wound_dir);
+    before = saved.size() >= 2
+                 ? load_branch_state(saved[saved.size() - 2].string(), model_->dimension(),
+                                     fingerprint_)
+                 : load_branch_state(start_file, model_->dimension(), fingerprint_);
     x = last.x;
     phi = last.parameter;
     if (last.next_step > 0.0 && last.next_step <= growth.max_step)
@@ -1068,11 +1066,14 @@ void EconeContactRun::wind_up() {
   std::string message;
   for (const double stop : stops) {
     if (stop > phi + at_stop) {
-      const ContactGrowthResult g =
-          grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth, on_point);
+      const ContactGrowthResult g = grow_with_contact(*model_, *proxy_, x, phi, stop, pins, growth,
+                                                      on_point, before.x.size() ? &before : nullptr);
       w.steps += g.steps;
       w.failed_steps += g.failed_steps;
+      w.predicted_steps += g.predicted_steps;
+      w.discarded_predictions += g.discarded_predictions;
       if (g.steps > 0) {
+        before = g.before_last;
         x = g.last.sample.sample.x;
         phi = g.last.sample.sample.parameter;
         pins = g.last.pins;
@@ -1113,7 +1114,9 @@ void EconeContactRun::wind_up() {
   w.end = w.reached ? "reached phi_e = " + fixed(target, 6) : message;
   w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   say("# stage 8: " + w.end + " (" + std::to_string(w.steps) + " steps, " +
-      std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) + " jumps)");
+      std::to_string(w.failed_steps) + " failed, " + std::to_string(w.jumps.size()) +
+      " jumps; this run's steps " + std::to_string(w.predicted_steps) + " from the predictor, " +
+      std::to_string(w.discarded_predictions) + " predictions discarded)");
   if (!w.reached) {
     const std::string why = "winding: " + w.end;
     mark_incomplete(why);

@@ -166,6 +166,10 @@ struct EconeWindUp {
   bool reached = false;    ///< the path reached the target
   std::optional<double> highest_phi;  ///< its last accepted state
   int steps = 0, failed_steps = 0;
+  /// Of this run's steps (a resumed run counts its own): those taken from the secant
+  /// predictor, and predictions discarded (ContactGrowthResult). In the log, not in
+  /// results.json, which a resumed run writes as the uninterrupted one did.
+  int predicted_steps = 0, discarded_predictions = 0;
   /// Where a stable state ended and the path dropped onto another one (a saddle pushed off).
   std::vector<double> jumps;
   /// The shapes written: at each of study.wind_shapes_at reached, and at the end.

@@ -8,7 +8,9 @@
 
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/near_contact_pairs.hpp"
+#include "libshell/contact/straight_path_crossing.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
+#include "solvers/stability/positive_definiteness.hpp"
 
 namespace growshell {
 
@@ -88,17 +90,44 @@ bool relax_with_contact(const ShellModel& model, double excess_angle, const Cont
   return false;
 }
 
+namespace {
+
+/// Whether y is a strict minimum of shell + penalty (pairs near y) at phi_e, the pins held: an
+/// unshifted Cholesky factorisation of its Hessian succeeds. If not, `mode` is its lowest
+/// eigenvector (the way off the saddle).
+bool strict_minimum(const ShellModel& model, const ContactProxy& proxy, double phi_e,
+                    const Eigen::VectorXd& y, const std::vector<Eigen::Index>& pins,
+                    const ContactBranchOptions& o, Eigen::VectorXd* mode) {
+  PenalizedShell total(model, proxy, near_penalty_pairs(proxy, y, o), o);
+  ObjectiveAtParameter total_at(total.energy, phi_e);
+  if (hessian_is_positive_definite(total_at, y, pins, 0.0)) return true;
+  EigenpairOptions eig;
+  eig.count = 1;
+  const Eigenpairs lowest = lowest_eigenpairs(total_at, y, pins, eig);
+  // Positive (to the eigensolver's tolerance) where the factorisation failed on rounding.
+  if (lowest.values[0] > 0.0) return true;
+  *mode = lowest.vectors.col(0);
+  return false;
+}
+
+}  // namespace
+
 ContactGrowthResult grow_with_contact(
     const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, double phi_target, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactGrowthOptions& options,
-    const std::function<void(const ContactGrowthPoint&)>& on_point) {
+    const std::function<void(const ContactGrowthPoint&)>& on_point,
+    const BranchSample* previous) {
   if (!(options.max_step > 0.0 && options.min_step > 0.0 && options.min_step <= options.max_step))
     throw std::invalid_argument("ContactGrowthOptions: need 0 < min_step <= max_step");
   if (!(options.initial_step >= 0.0 && options.initial_step <= options.max_step))
     throw std::invalid_argument("ContactGrowthOptions: need 0 <= initial_step <= max_step");
   if (options.max_saddle_escapes < 0)
     throw std::invalid_argument("ContactGrowthOptions::max_saddle_escapes must be >= 0");
+  if (previous && previous->x.size() != 0 && previous->x.size() != x0.size())
+    throw std::invalid_argument("grow_with_contact: the previous state has " +
+                                std::to_string(previous->x.size()) + " entries, x0 " +
+                                std::to_string(x0.size()));
   const ContactBranchOptions& o = options.contact;
   const double direction = phi_target >= phi0 ? 1.0 : -1.0;
   ContactGrowthResult out;
@@ -107,6 +136,10 @@ ContactGrowthResult grow_with_contact(
   double step = options.initial_step > 0.0 ? options.initial_step : options.max_step;
   out.last.sample.sample.x = x0;
   out.last.sample.sample.parameter = phi0;
+  if (previous) {
+    out.before_last.x = previous->x;
+    out.before_last.parameter = previous->parameter;
+  }
   std::vector<Eigen::Index> pins = fixed_dofs;
   while (direction * (phi_target - phi) > 1e-12) {
     // Pins whose lever arm the deformation has taken away leave a nearly free spin, whose
@@ -114,28 +147,48 @@ ContactGrowthResult grow_with_contact(
     pins = rigid_pins_for_state(model, x, pins, o);
     const double next =
         direction > 0 ? std::min(phi + step, phi_target) : std::max(phi - step, phi_target);
-    Eigen::VectorXd y = x;
+    Eigen::VectorXd y;
     double energy = 0.0;
     std::string why;
     bool accepted = false;
+    bool from_prediction = false;
     int escapes = 0;
-    for (; escapes <= options.max_saddle_escapes; ++escapes) {
-      if (!relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy, &why)) break;
-      // A strict minimum? The lowest eigenvalue of the penalised Hessian at the result.
-      PenalizedShell total(model, proxy, near_penalty_pairs(proxy, y, o), o);
-      EigenpairOptions eig;
-      eig.count = 1;
-      ObjectiveAtParameter total_at(total.energy, next);
-      const Eigenpairs lowest = lowest_eigenpairs(total_at, y, pins, eig);
-      if (lowest.values[0] > 0.0) {
-        accepted = true;
-        break;
+    Eigen::VectorXd mode;
+    const BranchSample& before = out.before_last;
+    Eigen::VectorXd shift;
+    if (options.secant_predictor && before.x.size() == x.size() && before.parameter != phi) {
+      shift = (x - before.x) * ((next - phi) / (phi - before.parameter));
+      for (const Eigen::Index i : pins) shift[i] = 0.0;
+      // After a slide (a dof moved farther than the pair search's margin in one step) the
+      // extrapolation is no part of a smooth path and may fall into another basin: not tried.
+      if (!(shift.lpNorm<Eigen::Infinity>() <= o.candidate_margin)) shift.resize(0);
+    }
+    if (shift.size() > 0) {
+      const Eigen::VectorXd predicted = x + shift;
+      y = predicted;
+      accepted = !first_vertex_triangle_crossing(proxy, x, predicted, o.exclusion_radius) &&
+                 relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy,
+                                    &why) &&
+                 (y - predicted).lpNorm<Eigen::Infinity>() <=
+                     shift.lpNorm<Eigen::Infinity>() &&
+                 strict_minimum(model, proxy, next, y, pins, o, &mode);
+      ++(accepted ? out.predicted_steps : out.discarded_predictions);
+      from_prediction = accepted;
+    }
+    if (!accepted) {
+      y = x;
+      for (; escapes <= options.max_saddle_escapes; ++escapes) {
+        if (!relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy, &why))
+          break;
+        if (strict_minimum(model, proxy, next, y, pins, o, &mode)) {
+          accepted = true;
+          break;
+        }
+        // A saddle: push along the negative mode and minimise again.
+        const double sign = escapes % 2 == 0 ? 1.0 : -1.0;
+        y += sign * (0.5 * o.contact_distance / mode.cwiseAbs().maxCoeff()) * mode;
+        why = "a saddle after " + std::to_string(escapes + 1) + " pushes";
       }
-      // A saddle: push along the negative mode and minimise again.
-      const Eigen::VectorXd mode = lowest.vectors.col(0);
-      const double sign = escapes % 2 == 0 ? 1.0 : -1.0;
-      y += sign * (0.5 * o.contact_distance / mode.cwiseAbs().maxCoeff()) * mode;
-      why = "a saddle after " + std::to_string(escapes + 1) + " pushes";
     }
     if (!accepted) {
       ++out.failed_steps;
@@ -147,6 +200,8 @@ ContactGrowthResult grow_with_contact(
       continue;
     }
     ++out.steps;
+    out.before_last.x = x;
+    out.before_last.parameter = phi;
     phi = next;
     x = y;
     BranchSample s;
@@ -161,6 +216,7 @@ ContactGrowthResult grow_with_contact(
     point.pins = pins;
     point.saddle_escapes = escapes;
     point.jumped = escapes > 0;
+    point.from_prediction = from_prediction;
     out.last = point;
     if (on_point) on_point(point);
   }

@@ -80,6 +80,17 @@ struct ContactGrowthOptions {
   /// Pushes along the lowest mode (h/2 at its largest entry) before a saddle counts as a
   /// failed step.
   int max_saddle_escapes = 3;
+  /// Start each step's minimisation from the secant extrapolation of the path's last two
+  /// accepted states (x + (x - x_before) dphi / (phi - phi_before), the pins held), instead of
+  /// from x. The extrapolation is tried only if it moves no dof farther than
+  /// contact.candidate_margin (after a longer step, a slide onto another state, it is no part
+  /// of a smooth path), and only if no proxy vertex passes through a proxy triangle on the
+  /// straight way there (first_vertex_triangle_crossing); its result is kept only
+  /// if it is a strict minimum that lies within |extrapolation|_inf of the extrapolated state
+  /// (the same stable state, not one the extrapolation overshot into); otherwise the step is
+  /// taken from x as without it, so where a stable state ends the path drops from the last
+  /// state as before.
+  bool secant_predictor = true;
 };
 
 /// One accepted (stable) state of the path.
@@ -93,6 +104,8 @@ struct ContactGrowthPoint {
   /// The minimisation from the previous state ended on a saddle and had to be pushed off it:
   /// the previous stable branch ended, and the path jumped to another stable state.
   bool jumped = false;
+  /// The minimisation started from the secant prediction (ContactGrowthOptions).
+  bool from_prediction = false;
 };
 
 /// Outcome of grow_with_contact; `last` always holds the last accepted point.
@@ -100,20 +113,33 @@ struct ContactGrowthResult {
   bool reached_target = false;
   std::string message;
   ContactGrowthPoint last;
+  /// The accepted state before `last` (x and parameter; x empty if there is none): passed as
+  /// `previous` to a path continued from `last`, it gives that path the same predictor.
+  BranchSample before_last;
   int steps = 0;
   int failed_steps = 0;
+  /// Steps accepted from the secant predictor, and predictions discarded (a passage through a
+  /// layer on the way, a relaxation that failed, a saddle, or a minimum away from the
+  /// prediction), whose step was then taken from the last state.
+  int predicted_steps = 0;
+  int discarded_predictions = 0;
 };
 
 /// Grows from the equilibrium (or any state) x0 at phi0 towards phi_target in natural steps,
 /// accepting only strict minima of shell + penalty; each accepted point goes to on_point as
-/// soon as it is found. The path carries from one step to the next only the state, the step
-/// and the pins, which each point reports: started again from a point with its step
-/// (options.initial_step) and pins (fixed_dofs), it goes on as it would have. Throws
-/// std::invalid_argument for bad options.
+/// soon as it is found. A strict minimum is a Hessian of shell + penalty (pins held) whose
+/// Cholesky factorisation succeeds; only a saddle's lowest mode is computed, to push off it.
+/// The path carries from one step to the next only the state, the step, the pins and (for the
+/// secant predictor) the accepted state before: started again from a point with its step
+/// (options.initial_step), pins (fixed_dofs) and the state before it (`previous`, e.g. the
+/// result's before_last; nullptr: the first step is taken from x0 alone), it goes on as it
+/// would have. Throws std::invalid_argument for bad options or a `previous` state of the wrong
+/// size.
 ContactGrowthResult grow_with_contact(
     const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, double phi_target, const std::vector<Eigen::Index>& fixed_dofs,
     const ContactGrowthOptions& options,
-    const std::function<void(const ContactGrowthPoint&)>& on_point = {});
+    const std::function<void(const ContactGrowthPoint&)>& on_point = {},
+    const BranchSample* previous = nullptr);
 
 }  // namespace growshell
