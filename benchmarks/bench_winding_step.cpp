@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,15 +28,6 @@
 
 namespace growshell {
 namespace {
-
-std::vector<Eigen::Index> read_pins(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot be read");
-  std::vector<Eigen::Index> pins;
-  long dof = 0;
-  while (in >> dof) pins.push_back(dof);
-  return pins;
-}
 
 constexpr const char* kUsage =
     "usage: bench_winding_step --study DIR [--from 20] [--steps 4] [--all 1]\n"
@@ -72,7 +62,7 @@ int run(int argc, char** argv) {
                                                 fingerprint);
   const BranchSample start = load_branch_state(saved[from].string(), model.dimension(),
                                                fingerprint);
-  const std::vector<Eigen::Index> pins = read_pins(dir + "/wound/pins.txt");
+  const std::vector<Eigen::Index> pins = read_winding_pins(dir + "/wound/pins.txt", model.dimension());
   const ContactGrowthOptions study = econe_winding_options(scene, model, proxy);
   const double target = start.parameter + steps * study.max_step;
   std::printf("# %s: %td unknowns, from row %d (phi_e = %.6f) by %d steps of %.3f\n",

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -64,22 +63,6 @@ Scene compared_mode_scene(const Scene& scene, int n) {
   mode.study.orientation_check_at.reset();  // the two-fold cone's S4 check
   mode.output.directory = (fs::path(scene.output.directory) / ("cone_n" + std::to_string(n))).string();
   return mode;
-}
-
-/// The dofs listed in `path` (one per line, each in [0, n)): the winding's pins.txt. Throws
-/// std::runtime_error naming the file if it is missing or holds anything else.
-std::vector<Eigen::Index> read_pins(const std::string& path, Eigen::Index n) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot be read (the winding's pins)");
-  std::vector<Eigen::Index> pins;
-  long long dof = 0;
-  while (in >> dof) {
-    if (dof < 0 || dof >= n) throw std::runtime_error(path + ": dof " + std::to_string(dof) +
-                                                      " is not in [0, " + std::to_string(n) + ")");
-    pins.push_back(static_cast<Eigen::Index>(dof));
-  }
-  if (!in.eof() || pins.empty()) throw std::runtime_error(path + ": not a list of dofs");
-  return pins;
 }
 
 /// Whether an S4 defect (relative to R) says the state is not S4-symmetric: above the scene's
@@ -324,10 +307,7 @@ void EconeContactRun::set_up_contact() {
       return false;
     };
   }
-  options_.relaxation.gradient_tolerance = c.arclength.gradient_tolerance;
-  // The decrement test stops Newton's crawl along the nearly free turn of the fold pattern.
-  options_.relaxation.decrement_tolerance = 1e-6 * scene_.material.youngs_modulus * h_ * h_ * h_;
-  options_.relaxation.max_iterations = 400;
+  options_.relaxation = scene_penalty_relaxation(scene_, *model_);
   if (st.ipopt_check)
     options_.verify_with_ipopt =
         hard_contact_solve_options(*model_, h_, c.contact_distance, c.exclusion_radius,
@@ -1055,7 +1035,7 @@ void EconeContactRun::wind_up() {
     phi = last.parameter;
     if (last.next_step > 0.0 && last.next_step <= growth.max_step)
       growth.initial_step = last.next_step;
-    pins = read_pins(pins_file, model_->dimension());
+    pins = read_winding_pins(pins_file, model_->dimension());
     w.steps = static_cast<int>(wound_->rows());
     w.highest_phi = phi;
     for (const RecordedEvent& e : wound_->events())

@@ -57,13 +57,11 @@ PatternOrientationCheckOptions scene_orientation_check_options(const Scene& scen
                                                                const ShellModel& model,
                                                                const ContactProxy& proxy) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
-  const double Y = scene.material.youngs_modulus;
   PatternOrientationCheckOptions o;
   for (const double t : scene.study.orientation_check_turns)
     o.turns.push_back(t * std::numbers::pi / 180.0);
   o.contact = scene_contact_penalty(scene, proxy);
-  o.relaxation.gradient_tolerance = scene.study.tolerance * model.natural_force_scale();
-  o.relaxation.decrement_tolerance = 1e-6 * Y * h * h * h;
+  o.relaxation = scene_penalty_relaxation(scene, model);
   o.relaxation.max_step_inf_norm = 0.25 * h;
   o.relaxation.max_iterations = 1000;
   o.core_radius = h;

@@ -18,4 +18,13 @@ ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProx
   return c;
 }
 
+NewtonOptions scene_penalty_relaxation(const Scene& scene, const ShellModel& model) {
+  const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
+  NewtonOptions newton;
+  newton.gradient_tolerance = scene.study.tolerance * model.natural_force_scale();
+  newton.decrement_tolerance = 1e-6 * scene.material.youngs_modulus * h * h * h;
+  newton.max_iterations = 400;
+  return newton;
+}
+
 }  // namespace growshell

@@ -3,11 +3,13 @@
 /// The contact penalty a scene asks for, as every study sets it: one place for the contact
 /// distance, the apex model's exclusion radius, the pair margin, the stiffness and the re-pinning
 /// threshold, so that the econe_contact study's branches and the orientation check relax the
-/// same energy.
+/// same energy, and the Newton settings of their relaxations of it.
 
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/io/scene.hpp"
+#include "libshell/assembly/shell_model.hpp"
 #include "solvers/contact/contact_branch.hpp"
+#include "solvers/newton/newton_solver.hpp"
 
 namespace growshell {
 
@@ -19,5 +21,12 @@ namespace growshell {
 /// pinning axis as the cone grows). The step control and the stability index are left at their
 /// defaults for the caller.
 ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProxy& proxy);
+
+/// Newton settings of a relaxation of shell + the scene's penalty (the econe_contact study's
+/// skewed search, its winding and the orientation check, before their own bounds): the force
+/// tolerance study.tolerance of the model's natural force scale, the decrement test at
+/// 1e-6 Y h^3 (it stops Newton's crawl along the nearly free turn of the fold pattern), 400
+/// steps.
+NewtonOptions scene_penalty_relaxation(const Scene& scene, const ShellModel& model);
 
 }  // namespace growshell
