@@ -84,10 +84,14 @@ int run(int argc, char** argv) {
             const auto now = std::chrono::steady_clock::now();
             const ContactBranchSample& s = p.sample;
             energies.push_back(s.stretching_energy + s.bending_energy + s.penalty_energy);
-            std::printf("predictor %d adaptive %d  phi_e %.5f  E %.10e J  %6.2f s%s\n",
-                        predictor, adaptive, s.sample.parameter, energies.back(),
-                        std::chrono::duration<double>(now - last).count(),
-                        p.from_prediction ? "  (from the prediction)" : "");
+            const ContactStepWork& w = p.work;
+            std::printf(
+                "predictor %d adaptive %d  phi_e %.5f  E %.10e J  %6.2f s  tries %d halvings %d "
+                "solves %d iterations %d factorisations %d eigensolves %d%s\n",
+                predictor, adaptive, s.sample.parameter, energies.back(),
+                std::chrono::duration<double>(now - last).count(), w.tries, w.halvings, w.solves,
+                w.newton_iterations, w.factorizations, w.eigen_solves,
+                p.from_prediction ? "  (from the prediction)" : "");
             std::fflush(stdout);
             last = now;
           },

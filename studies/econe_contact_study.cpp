@@ -1013,6 +1013,15 @@ void EconeContactRun::wind_up() {
           fixed(p.sample.sample.parameter, 6));
     }
     record_sample("wound", *wound_, p.sample);
+    const ContactStepWork& k = p.work;
+    say("#   its cost: " + std::to_string(k.tries) + " minimisations (" +
+        (p.from_prediction          ? "from the prediction"
+         : k.prediction_discarded ? "prediction discarded"
+                                  : "no prediction") +
+        "), " + std::to_string(k.halvings) + " halvings, " + std::to_string(k.solves) +
+        " Newton solves, " + std::to_string(k.newton_iterations) + " iterations, " +
+        std::to_string(k.factorizations) + " factorisations, " + std::to_string(k.eigen_solves) +
+        " eigensolves");
   };
   // The path carries its state, step and pins from one point to the next, across the stops and
   // across a resume (the last committed state with its next step, and pins.txt).

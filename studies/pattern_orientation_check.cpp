@@ -116,11 +116,12 @@ PatternOrientationCheck check_pattern_orientation(const ShellModel& model,
     s.turn = turn;
     s.x = transfer_state(model, x, model, turn);
     const std::vector<Eigen::Index> state_pins = rigid_pins_for_state(model, s.x, pins, o);
-    std::string why;
-    s.converged = relax_with_contact(model, phi_e, proxy, s.x, state_pins, o, options.relaxation,
-                                     &s.energy, &why);
+    const ContactRelaxation relaxed =
+        relax_with_contact(model, phi_e, proxy, s.x, state_pins, o, options.relaxation);
+    s.converged = relaxed.relaxed;
+    s.energy = relaxed.energy;
     if (!s.converged) {
-      s.message = why;
+      s.message = relaxed.message;
       out.turned.push_back(std::move(s));
       continue;
     }

@@ -21,11 +21,12 @@ ContactCandidates near_penalty_pairs(const ContactProxy& proxy,
                             options.exclusion_radius, options.selection);
 }
 
-bool relax_with_contact(const ShellModel& model, double excess_angle, const ContactProxy& proxy,
-                        Eigen::VectorXd& y,
-                        const std::vector<Eigen::Index>& fixed_dofs,
-                        const ContactBranchOptions& options, const NewtonOptions& newton,
-                        double* energy, std::string* message, int max_rounds) {
+ContactRelaxation relax_with_contact(const ShellModel& model, double excess_angle,
+                                     const ContactProxy& proxy, Eigen::VectorXd& y,
+                                     const std::vector<Eigen::Index>& fixed_dofs,
+                                     const ContactBranchOptions& options,
+                                     const NewtonOptions& newton, int max_rounds) {
+  ContactRelaxation out;
   ContactCandidates pairs = near_penalty_pairs(proxy, y, options);
   // With a bound b on the motion of a dof per Newton step, one solve stops once a dof has
   // moved candidate_margin / 4 (b capped at that too), and the pairs are searched again at the
@@ -47,13 +48,16 @@ bool relax_with_contact(const ShellModel& model, double excess_angle, const Cont
     ObjectiveAtParameter total_at(total.energy, excess_angle);
     const NewtonResult r = NewtonSolver(chunk).minimize(total_at, y, fixed_dofs);
     y = r.x;
+    ++out.solves;
+    out.newton_iterations += r.iterations;
+    out.factorizations += r.factorizations;
     iterations_left -= std::max(1, r.iterations);
     if (r.status == NewtonStatus::TravelLimit) {
       if (iterations_left <= 0) {
-        *message =
+        out.message =
             "relaxation failed: newton.max_iterations = " + std::to_string(newton.max_iterations) +
             " used up while moving";
-        return false;
+        return out;
       }
       // Moved as far as the pair set is trusted: go on with the pairs near the new state (a
       // union over a long way would only carry pairs left far behind).
@@ -61,8 +65,8 @@ bool relax_with_contact(const ShellModel& model, double excess_angle, const Cont
       continue;
     }
     if (!r.converged()) {
-      *message = "relaxation failed: " + r.message;
-      return false;
+      out.message = "relaxation failed: " + r.message;
+      return out;
     }
     ++round;
     // Settled if y is also an equilibrium (to the Newton force tolerance) of the penalty on the
@@ -72,8 +76,9 @@ bool relax_with_contact(const ShellModel& model, double excess_angle, const Cont
     const double e = own.energy.evaluate(y, excess_angle, &g, nullptr);
     for (const Eigen::Index i : fixed_dofs) g[i] = 0.0;  // reactions of the held dofs
     if (g.lpNorm<Eigen::Infinity>() <= newton.gradient_tolerance) {
-      *energy = e;
-      return true;
+      out.relaxed = true;
+      out.energy = e;
+      return out;
     }
     // Otherwise: if the set y was minimised with covers every pair near y (a vertex near two
     // triangles, e.g. between two layers, keeps both), y is an equilibrium of a penalty that
@@ -81,26 +86,32 @@ bool relax_with_contact(const ShellModel& model, double excess_angle, const Cont
     // which only grows, so the rounds end.
     const ContactCandidates merged = merge_contact_pairs(pairs, own.pairs);
     if (merged.size() == pairs.size()) {
-      *energy = r.energy;
-      return true;
+      out.relaxed = true;
+      out.energy = r.energy;
+      return out;
     }
     pairs = merged;
   }
-  *message = "the pair set did not settle in " + std::to_string(max_rounds) + " relaxation rounds";
-  return false;
+  out.message =
+      "the pair set did not settle in " + std::to_string(max_rounds) + " relaxation rounds";
+  return out;
 }
 
 namespace {
 
 /// Whether y is a strict minimum of shell + penalty (pairs near y) at phi_e, the pins held: an
 /// unshifted Cholesky factorisation of its Hessian succeeds. If not, `mode` is its lowest
-/// eigenvector (the way off the saddle).
+/// eigenvector (the way off the saddle). Counts the test (and the eigensolve) in `work`.
 bool strict_minimum(const ShellModel& model, const ContactProxy& proxy, double phi_e,
                     const Eigen::VectorXd& y, const std::vector<Eigen::Index>& pins,
-                    const ContactBranchOptions& o, Eigen::VectorXd* mode) {
+                    const ContactBranchOptions& o, Eigen::VectorXd* mode,
+                    ContactStepWork& work) {
   PenalizedShell total(model, proxy, near_penalty_pairs(proxy, y, o), o);
   ObjectiveAtParameter total_at(total.energy, phi_e);
+  ++work.stability_tests;
+  ++work.factorizations;
   if (hessian_is_positive_definite(total_at, y, pins, 0.0)) return true;
+  ++work.eigen_solves;
   EigenpairOptions eig;
   eig.count = 1;
   const Eigenpairs lowest = lowest_eigenpairs(total_at, y, pins, eig);
@@ -108,6 +119,21 @@ bool strict_minimum(const ShellModel& model, const ContactProxy& proxy, double p
   if (lowest.values[0] > 0.0) return true;
   *mode = lowest.vectors.col(0);
   return false;
+}
+
+/// relax_with_contact, its cost added to `work`; `why` gets its message on failure.
+bool relax_counted(const ShellModel& model, double phi_e, const ContactProxy& proxy,
+                   Eigen::VectorXd& y, const std::vector<Eigen::Index>& pins,
+                   const ContactBranchOptions& o, const NewtonOptions& newton, double* energy,
+                   std::string* why, ContactStepWork& work) {
+  const ContactRelaxation r = relax_with_contact(model, phi_e, proxy, y, pins, o, newton);
+  ++work.tries;
+  work.solves += r.solves;
+  work.newton_iterations += r.newton_iterations;
+  work.factorizations += r.factorizations;
+  if (r.relaxed) *energy = r.energy;
+  else *why = r.message;
+  return r.relaxed;
 }
 
 }  // namespace
@@ -141,6 +167,7 @@ ContactGrowthResult grow_with_contact(
     out.before_last.parameter = previous->parameter;
   }
   std::vector<Eigen::Index> pins = fixed_dofs;
+  ContactStepWork work;  // of the point being sought, over all its tries
   while (direction * (phi_target - phi) > 1e-12) {
     // Pins whose lever arm the deformation has taken away leave a nearly free spin, whose
     // eigenvalue near zero would also blur the strict-minimum test below.
@@ -167,20 +194,21 @@ ContactGrowthResult grow_with_contact(
       const Eigen::VectorXd predicted = x + shift;
       y = predicted;
       accepted = !first_vertex_triangle_crossing(proxy, x, predicted, o.exclusion_radius) &&
-                 relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy,
-                                    &why) &&
+                 relax_counted(model, next, proxy, y, pins, o, options.newton, &energy, &why,
+                               work) &&
                  (y - predicted).lpNorm<Eigen::Infinity>() <=
                      shift.lpNorm<Eigen::Infinity>() &&
-                 strict_minimum(model, proxy, next, y, pins, o, &mode);
+                 strict_minimum(model, proxy, next, y, pins, o, &mode, work);
       ++(accepted ? out.predicted_steps : out.discarded_predictions);
+      work.prediction_discarded = work.prediction_discarded || !accepted;
       from_prediction = accepted;
     }
     if (!accepted) {
       y = x;
       for (; escapes <= options.max_saddle_escapes; ++escapes) {
-        if (!relax_with_contact(model, next, proxy, y, pins, o, options.newton, &energy, &why))
+        if (!relax_counted(model, next, proxy, y, pins, o, options.newton, &energy, &why, work))
           break;
-        if (strict_minimum(model, proxy, next, y, pins, o, &mode)) {
+        if (strict_minimum(model, proxy, next, y, pins, o, &mode, work)) {
           accepted = true;
           break;
         }
@@ -192,6 +220,7 @@ ContactGrowthResult grow_with_contact(
     }
     if (!accepted) {
       ++out.failed_steps;
+      ++work.halvings;
       step /= 2;
       if (step < options.min_step) {
         out.message = "step below min_step at phi_e = " + std::to_string(phi) + ": " + why;
@@ -217,6 +246,8 @@ ContactGrowthResult grow_with_contact(
     point.saddle_escapes = escapes;
     point.jumped = escapes > 0;
     point.from_prediction = from_prediction;
+    point.work = work;
+    work = ContactStepWork{};
     out.last = point;
     if (on_point) on_point(point);
   }

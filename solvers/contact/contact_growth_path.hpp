@@ -44,6 +44,22 @@ struct PenalizedShell {
   PenalizedShell& operator=(const PenalizedShell&) = delete;
 };
 
+/// Outcome of relax_with_contact, with what it cost.
+struct ContactRelaxation {
+  /// True if y is the minimiser: Newton converged and the pair set settled.
+  bool relaxed = false;
+  /// E + P at y (J), on success.
+  double energy = 0.0;
+  /// Why not, on failure: Newton's failure, the step budget used up, or max_rounds passed.
+  std::string message;
+  /// Newton solves run (one per round, or per bounded stretch of motion), their accepted
+  /// iterations and their numeric factorisations (failed indefinite attempts included). Each
+  /// solve starts with a search for the pairs near its state.
+  int solves = 0;
+  int newton_iterations = 0;
+  int factorizations = 0;
+};
+
 /// Minimises shell + penalty (pairs of options: near y within contact_distance +
 /// candidate_margin, stiffness, selection) at the excess angle phi_e from y, with
 /// `fixed_dofs` held. The result must also be an equilibrium, to newton.gradient_tolerance, of
@@ -59,13 +75,12 @@ struct PenalizedShell {
 /// through a layer whose triangles are not in the set; newton.max_iterations then counts the
 /// steps of all solves (without a bound it applies to each round).
 ///
-/// On success y is the minimiser and `energy` its E + P (J); returns false (y the last
-/// iterate, `message` why) if Newton fails, the step budget is used up, or max_rounds pass.
-bool relax_with_contact(const ShellModel& model, double excess_angle, const ContactProxy& proxy,
-                        Eigen::VectorXd& y,
-                        const std::vector<Eigen::Index>& fixed_dofs,
-                        const ContactBranchOptions& options, const NewtonOptions& newton,
-                        double* energy, std::string* message, int max_rounds = 10);
+/// y ends as the minimiser on success, otherwise as the last iterate.
+ContactRelaxation relax_with_contact(const ShellModel& model, double excess_angle,
+                                     const ContactProxy& proxy, Eigen::VectorXd& y,
+                                     const std::vector<Eigen::Index>& fixed_dofs,
+                                     const ContactBranchOptions& options,
+                                     const NewtonOptions& newton, int max_rounds = 10);
 
 /// Settings of grow_with_contact.
 struct ContactGrowthOptions {
@@ -93,6 +108,20 @@ struct ContactGrowthOptions {
   bool secant_predictor = true;
 };
 
+/// What finding one accepted point of grow_with_contact cost, summed over every try: the
+/// prediction (discarded or not), the minimisations from the last state, the pushes off saddles
+/// and the step sizes that failed before the accepted one.
+struct ContactStepWork {
+  int tries = 0;                ///< minimisations started (prediction, last state, each push)
+  int halvings = 0;             ///< step sizes that failed before the accepted one
+  int solves = 0;               ///< Newton solves (ContactRelaxation::solves)
+  int newton_iterations = 0;    ///< accepted Newton iterations
+  int factorizations = 0;       ///< Newton's factorisations plus one per stability test
+  int stability_tests = 0;      ///< Cholesky tests of a relaxed state
+  int eigen_solves = 0;         ///< lowest eigenpairs computed (at saddles)
+  bool prediction_discarded = false;  ///< the secant prediction was tried and not kept
+};
+
 /// One accepted (stable) state of the path.
 struct ContactGrowthPoint {
   /// State, energies, forces, pairs (negative count 0); sample.next_step is the step the path
@@ -106,6 +135,8 @@ struct ContactGrowthPoint {
   bool jumped = false;
   /// The minimisation started from the secant prediction (ContactGrowthOptions).
   bool from_prediction = false;
+  /// What finding this point cost.
+  ContactStepWork work;
 };
 
 /// Outcome of grow_with_contact; `last` always holds the last accepted point.

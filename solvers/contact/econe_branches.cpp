@@ -197,13 +197,13 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
       const Eigen::VectorXd mode = lowest.vectors.col(k);
       for (const int sign : {1, -1}) {
         Eigen::VectorXd y = top.x + sign * (options.push * h_c / mode.cwiseAbs().maxCoeff()) * mode;
-        double energy = 0.0;
-        std::string why;
-        if (!relax_with_contact(model, top.parameter, proxy, y, pins, o, options.relaxation, &energy,
-                                &why)) {
-          m << " mode " << k << " push " << sign << ": " << why << ";";
+        const ContactRelaxation relaxed =
+            relax_with_contact(model, top.parameter, proxy, y, pins, o, options.relaxation);
+        if (!relaxed.relaxed) {
+          m << " mode " << k << " push " << sign << ": " << relaxed.message << ";";
           continue;
         }
+        const double energy = relaxed.energy;
         SelfIntersectionOptions si;
         si.exclusion_radius = o.exclusion_radius;
         const bool crossed = find_self_intersection(model, y, si).intersects;

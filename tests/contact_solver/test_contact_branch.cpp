@@ -520,6 +520,43 @@ TEST(ContactGrowth, ThePredictorMovesTheStartOfEachStepNotItsMinimum) {
   EXPECT_GT(touching, 0) << "the path never reached contact";
 }
 
+// Each point's work adds up to the path's counts: its failed step sizes, its discarded
+// predictions, and at least one relaxation (one Newton solve) and one Cholesky test per point;
+// every Newton iteration factorises at least once, and a stability test is one factorisation.
+TEST(ContactGrowth, EachPointsWorkAddsUpToThePath) {
+  GrownDisc& d = disc();
+  ContactGrowthOptions o;
+  o.contact = d.options();
+  o.contact.selection = NearPairSelection{false, false};
+  o.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
+  o.newton.max_iterations = 200;
+  o.max_step = 0.1;
+  std::vector<ContactGrowthPoint> a;
+  const ContactGrowthResult r = grow_with_contact(
+      d.model, d.proxy, d.start(), GrownDisc::kStart, 6.4, d.pinned, o,
+      [&](const ContactGrowthPoint& p) { a.push_back(p); });
+  ASSERT_TRUE(r.reached_target) << r.message;
+  ASSERT_EQ(static_cast<int>(a.size()), r.steps);
+  int halvings = 0, discarded = 0;
+  for (const ContactGrowthPoint& p : a) {
+    const ContactStepWork& w = p.work;
+    halvings += w.halvings;
+    discarded += w.prediction_discarded;
+    EXPECT_GE(w.tries, 1 + w.halvings + p.saddle_escapes);
+    EXPECT_GE(w.solves, w.tries);
+    EXPECT_GE(w.stability_tests, 1);
+    EXPECT_GE(w.factorizations, w.newton_iterations + w.stability_tests);
+    // An eigensolve follows a failed Cholesky test only; a push follows a saddle only.
+    EXPECT_LE(w.eigen_solves, w.stability_tests);
+    EXPECT_GE(w.eigen_solves, p.saddle_escapes);
+  }
+  EXPECT_EQ(halvings, r.failed_steps);
+  // A point has at most one prediction, so this holds while no step size fails.
+  if (r.failed_steps == 0) {
+    EXPECT_EQ(discarded, r.discarded_predictions);
+  }
+}
+
 TEST(ContactGrowth, BadOptionsAreRejectedByName) {
   GrownDisc& d = disc();
   const Eigen::VectorXd& x = d.model.reference_positions();

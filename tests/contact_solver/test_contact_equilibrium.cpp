@@ -284,15 +284,17 @@ TEST(RelaxWithContact, BoundedNewtonStepsCannotPassThroughALayer) {
   newton.max_iterations = 400;
 
   Eigen::VectorXd unbounded = x0;
-  double energy = 0.0;
-  std::string message;
-  relax_with_contact(s.model, 0.0, s.proxy, unbounded, held, o, newton, &energy, &message);
+  relax_with_contact(s.model, 0.0, s.proxy, unbounded, held, o, newton);
   EXPECT_LT(over_bottom(unbounded), -h) << "the unbounded relaxation should pass through";
 
   newton.max_step_inf_norm = 0.25 * h;
   Eigen::VectorXd bounded = x0;
-  ASSERT_TRUE(relax_with_contact(s.model, 0.0, s.proxy, bounded, held, o, newton, &energy, &message))
-      << message;
+  const ContactRelaxation relaxed = relax_with_contact(s.model, 0.0, s.proxy, bounded, held, o, newton);
+  ASSERT_TRUE(relaxed.relaxed) << relaxed.message;
+  // Each bounded solve moves a dof by at most candidate_margin / 4 (+ one capped step), so the
+  // way down to the layer takes several solves, each with its own pair search.
+  EXPECT_GE(relaxed.solves, 2);
+  EXPECT_GE(relaxed.factorizations, relaxed.newton_iterations);
   EXPECT_GT(over_bottom(bounded), h - 0.01 * h);
   EXPECT_GE(closest_pair(s.proxy, bounded, 2.0 * h, o.exclusion_radius), h - 0.01 * h);
 }

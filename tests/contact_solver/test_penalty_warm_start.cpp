@@ -49,10 +49,8 @@ PenaltyState penalty_equilibrium(TwoStrips& s, const ContactBranchOptions& o) {
   NewtonOptions newton;
   newton.gradient_tolerance = 1e-10 * TwoStrips::kForce;
   newton.max_iterations = 200;
-  double energy = 0.0;
-  std::string message;
-  EXPECT_TRUE(relax_with_contact(s.model, 0.0, s.proxy, p.x, s.fixed(), o, newton, &energy, &message))
-      << message;
+  const ContactRelaxation relaxed = relax_with_contact(s.model, 0.0, s.proxy, p.x, s.fixed(), o, newton);
+  EXPECT_TRUE(relaxed.relaxed) << relaxed.message;
   p.pairs = near_penalty_pairs(s.proxy, p.x, o);
   return p;
 }
