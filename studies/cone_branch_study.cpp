@@ -108,8 +108,10 @@ class ConeBranchRun {
   void snapshot(double phi, const Eigen::VectorXd& x, const std::string& name);
   int index_without_pattern_turn(const BranchSample& s);
   double phase_force(const BranchSample& s);
+  ArclengthOptions cone_arclength_options();
   BranchTrace trace_cone(const Eigen::VectorXd& x0, double phi0, const Eigen::VectorXd& dx,
-                         double dphi, const BranchSample* resumed = nullptr);
+                         double dphi);
+  BranchTrace resume_cone(const BranchSample& saved, const Eigen::VectorXd& dx, double dphi);
   bool trace_from_flat(BranchTrace& trace);
   BranchTrace trace_from_state();
   ConeBranchStudy finish(const BranchTrace& trace, bool entered_cone, double wall);
@@ -384,31 +386,26 @@ double ConeBranchRun::phase_force(const BranchSample& s) {
   return std::abs(phase_multiplier(g, phase_functional_, pinned_));
 }
 
-/// The cone branch, in the subspace if there is one (full states in and out either way); in
-/// the full space with the pattern's orientation held by a phase condition if asked.
-/// `resumed`: the saved sample (x0, phi0) was read from, whose reduced coordinates a trace in
-/// the subspace starts from (resume_branch_in_subspace).
-BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
-                                      const Eigen::VectorXd& dx, double dphi,
-                                      const BranchSample* resumed) {
-  const auto sample = [this](const BranchSample& s) { on_sample(s); };
-  const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
-  const auto event = [this](const LocatedEvent& e) { on_event(e); };
+/// The continuation settings of the cone's trace: the study's, with the stability index that
+/// leaves out the pattern's turn if asked.
+ArclengthOptions ConeBranchRun::cone_arclength_options() {
   ArclengthOptions options = arclength_;
   if (turn_free_index_)
     options.stability_index = [this](const BranchSample& s) {
       return index_without_pattern_turn(s);
     };
-  if (subspace_ && resumed) {
-    bool reduced = false;
-    BranchTrace trace = resume_branch_in_subspace(*model_, *subspace_, *resumed, dx, dphi, pinned_,
-                                                  options, sample, special, events_, event,
-                                                  &reduced);
-    if (!reduced)
-      say("# the saved state keeps no reduced coordinates of this subspace: its projection is "
-          "traced on (the same branch, with steps equal to rounding)");
-    return trace;
-  }
+  return options;
+}
+
+/// The cone branch from (x0, phi0) along (dx, dphi), in the subspace if there is one (full
+/// states in and out either way); in the full space with the pattern's orientation held by a
+/// phase condition if asked.
+BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
+                                      const Eigen::VectorXd& dx, double dphi) {
+  const auto sample = [this](const BranchSample& s) { on_sample(s); };
+  const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
+  const auto event = [this](const LocatedEvent& e) { on_event(e); };
+  const ArclengthOptions options = cone_arclength_options();
   if (subspace_)
     return trace_branch_in_subspace(*model_, *subspace_, x0, phi0, dx, dphi, pinned_, options,
                                     sample, special, events_, event);
@@ -420,6 +417,25 @@ BranchTrace ConeBranchRun::trace_cone(const Eigen::VectorXd& x0, double phi0,
   }
   return trace_branch_along(*model_, x0, phi0, dx, dphi, pinned_, options, sample, special, events_,
                             event);
+}
+
+/// The cone on from a saved sample: in the subspace from the reduced coordinates it keeps
+/// (resume_branch_in_subspace), so that the trace goes on through the samples the
+/// interrupted one would have found; otherwise as trace_cone from its state.
+BranchTrace ConeBranchRun::resume_cone(const BranchSample& saved, const Eigen::VectorXd& dx,
+                                       double dphi) {
+  if (!subspace_) return trace_cone(saved.x, saved.parameter, dx, dphi);
+  const auto sample = [this](const BranchSample& s) { on_sample(s); };
+  const auto special = [this](const SpecialPoint& sp) { on_special(sp); };
+  const auto event = [this](const LocatedEvent& e) { on_event(e); };
+  bool reduced = false;
+  BranchTrace trace = resume_branch_in_subspace(*model_, *subspace_, saved, dx, dphi, pinned_,
+                                                cone_arclength_options(), sample, special,
+                                                events_, event, &reduced);
+  if (!reduced)
+    say("# the saved state keeps no reduced coordinates of this subspace: its projection is "
+        "traced on (the same branch, with steps equal to rounding)");
+  return trace;
 }
 
 /// The flat branch to the branch point of the wanted mode, then the cone; false (with the
@@ -498,8 +514,7 @@ BranchTrace ConeBranchRun::trace_from_state() {
   if (options_.start == ConeBranchStart::LastState && start.next_step >= arclength_.min_step &&
       start.next_step <= arclength_.max_step)
     arclength_.initial_step = start.next_step;
-  return trace_cone(start.x, start.parameter, sign * start.tangent_state,
-                    sign * start.tangent_parameter, &start);
+  return resume_cone(start, sign * start.tangent_state, sign * start.tangent_parameter);
 }
 
 ConeBranchStudy ConeBranchRun::finish(const BranchTrace& trace, bool entered_cone, double wall) {

@@ -31,15 +31,9 @@ ConeSubspaceChoice subspace_for_start(std::shared_ptr<const SymmetricSubspace> s
                                       const Eigen::Ref<const Eigen::VectorXd>& x,
                                       double max_asymmetry, const std::string& branch) {
   if (!subspace) return {nullptr, ""};
-  const double asymmetry = subspace->aligned_asymmetry(x);
-  if (asymmetry <= max_asymmetry) return {std::move(subspace), ""};
-  char note[400];
-  std::snprintf(note, sizeof note,
-                " is traced in the full space: its start is %.3g m off its image under the "
-                "subspace's symmetry in every frame (more than %.3g m; e.g. a fold pattern "
-                "turned against the mesh)",
-                asymmetry, max_asymmetry);
-  return {nullptr, branch + note};
+  std::string note = subspace_start_mismatch(*subspace, x, max_asymmetry, branch);
+  if (note.empty()) return {std::move(subspace), ""};
+  return {nullptr, note + "; e.g. a fold pattern turned against the mesh"};
 }
 
 }  // namespace growshell

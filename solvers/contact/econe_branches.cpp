@@ -14,6 +14,7 @@
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/penalty_warm_start.hpp"
+#include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
@@ -250,16 +251,12 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
       out.skewed_found = true;
       out.skewed_relaxed_energy = best_energy;
       if (options.skewed_subspace) {
-        const double asymmetry = options.skewed_subspace->aligned_asymmetry(best);
-        if (asymmetry <= 0.1 * h_c) {
+        const std::string mismatch = subspace_start_mismatch(*options.skewed_subspace, best,
+                                                             0.1 * h_c, "the skewed branch");
+        if (mismatch.empty())
           skewed_options.symmetric_subspace = options.skewed_subspace;
-        } else {
-          std::ostringstream a;
-          a << "the skewed branch is traced in the full space: the relaxed state is " << asymmetry
-            << " m off its image under the subspace's symmetry (more than " << 0.1 * h_c
-            << " m)";
-          note(a.str());
-        }
+        else
+          note(mismatch);
       }
       // Downwards until the branch ends at a fold; the part beyond it comes back up, and the
       // trace stops when that part reaches the relaxed state's phi_e again.

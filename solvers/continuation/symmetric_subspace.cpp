@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -295,6 +296,19 @@ SymmetricSubspace half_turn_subspace(const ShellModel& model, double tolerance) 
   check_maps_faces_onto_faces(model.topology(), half_turn);
   // No pin configuration: the pins are chosen at each trace's start (see the header).
   return SymmetricSubspace(nv, {half_turn});
+}
+
+std::string subspace_start_mismatch(const SymmetricSubspace& subspace,
+                                    const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    double max_asymmetry, const std::string& branch) {
+  const double asymmetry = subspace.aligned_asymmetry(x);
+  if (asymmetry <= max_asymmetry) return "";
+  char note[300];
+  std::snprintf(note, sizeof note,
+                " is traced in the full space: its start is %.3g m off its image under the "
+                "subspace's symmetry in every frame (more than %.3g m)",
+                asymmetry, max_asymmetry);
+  return branch + note;
 }
 
 }  // namespace growshell

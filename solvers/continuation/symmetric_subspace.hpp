@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "libshell/assembly/shell_model.hpp"
@@ -127,5 +128,13 @@ SymmetricSubspace two_mirror_subspace(const ShellModel& model, double tolerance)
 /// naming a vertex or a face if the reference control mesh lacks the half turn within
 /// `tolerance` (m).
 SymmetricSubspace half_turn_subspace(const ShellModel& model, double tolerance);
+
+/// Why the state x cannot start a trace of `branch` in `subspace`: "" if x has the subspace's
+/// symmetry up to `max_asymmetry` (m) in some frame (aligned_asymmetry), else the note
+/// "`branch` is traced in the full space: its start is ... m off its image under the
+/// subspace's symmetry in every frame (more than ... m)". Throws as aligning_motion.
+std::string subspace_start_mismatch(const SymmetricSubspace& subspace,
+                                    const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    double max_asymmetry, const std::string& branch);
 
 }  // namespace growshell

@@ -244,6 +244,13 @@ TEST(SymmetricSubspace, HalfTurnSubspaceHoldsTheSkewedStatesAndAlignsThem) {
   const Eigen::VectorXd& X = model.reference_positions();
   for (Eigen::Index v = 0; v < nv; ++v) odd(3 * v + 2) += 0.05 * X(3 * v) * X(3 * v) * X(3 * v);
   EXPECT_GT(sub.aligned_asymmetry(odd), 1e-3);
+  // As a start of a trace: the turned state may start one in the subspace, the odd one not,
+  // and the note names the branch and both distances.
+  EXPECT_EQ(subspace_start_mismatch(sub, turned, 1e-6, "the skewed branch"), "");
+  const std::string note = subspace_start_mismatch(sub, odd, 1e-6, "the skewed branch");
+  EXPECT_EQ(note.rfind("the skewed branch is traced in the full space: its start is ", 0), 0u)
+      << note;
+  EXPECT_NE(note.find("(more than 1e-06 m)"), std::string::npos) << note;
 }
 
 TEST(SymmetricSubspace, RestrictedFamilyHasTheDerivativesOfItsEnergy) {
