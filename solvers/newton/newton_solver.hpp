@@ -66,9 +66,9 @@ struct NewtonIterate {
   double energy = 0.0;
   /// Infinity norm of the free-dof gradient after the step.
   double gradient_inf_norm = 0.0;
-  /// Accepted line-search step length alpha in (0, 1] (times the capped Newton step).
   /// Largest coordinate change of the accepted step, |alpha * dx|_inf (units of x).
   double step_inf_norm = 0.0;
+  /// Accepted line-search step length alpha in (0, 1] (times the capped Newton step).
   double step_length = 0.0;
   /// Diagonal shift (absolute, Hessian units) of the factorisation that gave the step; 0 if
   /// the Hessian itself was positive definite.

@@ -518,25 +518,10 @@ TEST(ContactGrowth, ThePredictorMovesTheStartOfEachStepNotItsMinimum) {
   // decrement test leaves unconverged: 1.4e-3 h at most (measured; energies to 7e-13).
   EXPECT_LE(largest, 1e-2 * kH);
   EXPECT_GT(touching, 0) << "the path never reached contact";
-}
 
-// Each point's work adds up to the path's counts: its failed step sizes, its discarded
-// predictions, and at least one relaxation (one Newton solve) and one Cholesky test per point;
-// every Newton iteration factorises at least once, and a stability test is one factorisation.
-TEST(ContactGrowth, EachPointsWorkAddsUpToThePath) {
-  GrownDisc& d = disc();
-  ContactGrowthOptions o;
-  o.contact = d.options();
-  o.contact.selection = NearPairSelection{false, false};
-  o.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
-  o.newton.max_iterations = 200;
-  o.max_step = 0.1;
-  std::vector<ContactGrowthPoint> a;
-  const ContactGrowthResult r = grow_with_contact(
-      d.model, d.proxy, d.start(), GrownDisc::kStart, 6.4, d.pinned, o,
-      [&](const ContactGrowthPoint& p) { a.push_back(p); });
-  ASSERT_TRUE(r.reached_target) << r.message;
-  ASSERT_EQ(static_cast<int>(a.size()), r.steps);
+  // Each point's work adds up to the path's counts: its failed step sizes, its discarded
+  // predictions, and at least one relaxation (one Newton solve) and one Cholesky test per
+  // point; every Newton iteration factorises at least once, a stability test once more.
   int halvings = 0, discarded = 0;
   for (const ContactGrowthPoint& p : a) {
     const ContactStepWork& w = p.work;
@@ -550,10 +535,10 @@ TEST(ContactGrowth, EachPointsWorkAddsUpToThePath) {
     EXPECT_LE(w.eigen_solves, w.stability_tests);
     EXPECT_GE(w.eigen_solves, p.saddle_escapes);
   }
-  EXPECT_EQ(halvings, r.failed_steps);
+  EXPECT_EQ(halvings, with_it.failed_steps);
   // A point has at most one prediction, so this holds while no step size fails.
-  if (r.failed_steps == 0) {
-    EXPECT_EQ(discarded, r.discarded_predictions);
+  if (with_it.failed_steps == 0) {
+    EXPECT_EQ(discarded, with_it.discarded_predictions);
   }
 }
 
