@@ -121,18 +121,18 @@ bool strict_minimum(const ShellModel& model, const ContactProxy& proxy, double p
   return false;
 }
 
-/// relax_with_contact, its cost added to `work`; `why` gets its message on failure.
+/// Whether relax_with_contact relaxed y, its cost added to `work`; `why` gets its message on
+/// failure.
 bool relax_counted(const ShellModel& model, double phi_e, const ContactProxy& proxy,
                    Eigen::VectorXd& y, const std::vector<Eigen::Index>& pins,
-                   const ContactBranchOptions& o, const NewtonOptions& newton, double* energy,
-                   std::string* why, ContactStepWork& work) {
+                   const ContactBranchOptions& o, const NewtonOptions& newton, std::string* why,
+                   ContactStepWork& work) {
   const ContactRelaxation r = relax_with_contact(model, phi_e, proxy, y, pins, o, newton);
   ++work.tries;
   work.solves += r.solves;
   work.newton_iterations += r.newton_iterations;
   work.factorizations += r.factorizations;
-  if (r.relaxed) *energy = r.energy;
-  else *why = r.message;
+  if (!r.relaxed) *why = r.message;
   return r.relaxed;
 }
 
@@ -175,7 +175,6 @@ ContactGrowthResult grow_with_contact(
     const double next =
         direction > 0 ? std::min(phi + step, phi_target) : std::max(phi - step, phi_target);
     Eigen::VectorXd y;
-    double energy = 0.0;
     std::string why;
     bool accepted = false;
     bool from_prediction = false;
@@ -194,8 +193,7 @@ ContactGrowthResult grow_with_contact(
       const Eigen::VectorXd predicted = x + shift;
       y = predicted;
       accepted = !first_vertex_triangle_crossing(proxy, x, predicted, o.exclusion_radius) &&
-                 relax_counted(model, next, proxy, y, pins, o, options.newton, &energy, &why,
-                               work) &&
+                 relax_counted(model, next, proxy, y, pins, o, options.newton, &why, work) &&
                  (y - predicted).lpNorm<Eigen::Infinity>() <=
                      shift.lpNorm<Eigen::Infinity>() &&
                  strict_minimum(model, proxy, next, y, pins, o, &mode, work);
@@ -206,7 +204,7 @@ ContactGrowthResult grow_with_contact(
     if (!accepted) {
       y = x;
       for (; escapes <= options.max_saddle_escapes; ++escapes) {
-        if (!relax_counted(model, next, proxy, y, pins, o, options.newton, &energy, &why, work))
+        if (!relax_counted(model, next, proxy, y, pins, o, options.newton, &why, work))
           break;
         if (strict_minimum(model, proxy, next, y, pins, o, &mode, work)) {
           accepted = true;
