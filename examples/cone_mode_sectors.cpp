@@ -7,10 +7,10 @@
 // branch_eigenvalues) splits into sectors: the modes even under both mirrors (A1, which keeps
 // S4, and B2, which breaks it: the up-folds close while the down-folds open), the modes odd
 // under both (A2, the turn of the pattern about the axis, and B1), and the modes even under one
-// mirror and odd under the other (the E pairs). Each sector is the subspace of a SymmetricSubspace
-// whose generators are the mirrors with their signs flipped where the mode is odd; the
-// rigid motions in the sector are pinned there (SymmetricSubspace::rigid_motion_pins), so no
-// pin mixes the classes, as six pins on the whole sheet do. Within the even-even and odd-odd
+// mirror and odd under the other (the E pairs). Each sector is a symmetry class of the group of
+// the two mirrors (VertexSymmetryGroup::class_basis, the character the sector's parities); the
+// rigid motions in the sector are pinned there (subspace_rigid_motions), so no pin mixes the
+// classes, as six pins on the whole sheet do. Within the even-even and odd-odd
 // sectors, the S4 parity of each mode tells A1 from B2 and A2 from B1. These are the classes of
 // the h -> 0 cone's eigenvalues in ../shared/docs/physics.md, "Stability of the h -> 0 cone".
 //
@@ -40,6 +40,7 @@
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
 #include "solvers/stability/rigid_free_eigenpairs.hpp"
+#include "solvers/stability/subspace_rigid_motions.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/saved_state.hpp"
 
@@ -59,17 +60,9 @@ symmetry (mesh.family rings or gmsh_d4).
 
 struct Sector {
   const char* name;
-  double sign_x;  // parity under x -> -x
-  double sign_y;  // parity under y -> -y
+  int sign_x;  // parity under x -> -x
+  int sign_y;  // parity under y -> -y
 };
-
-// The mirror about coordinate `axis` acting on the modes of parity `parity` under it: a mode
-// v with T v = parity v is invariant under parity T.
-VertexSymmetry signed_mirror(const Eigen::MatrixX3d& positions, int axis, double parity) {
-  VertexSymmetry mirror = mirror_symmetry(positions, axis, 1e-9 * positions.cwiseAbs().maxCoeff());
-  mirror.signs *= parity;
-  return mirror;
-}
 
 std::string mode_class(const Sector& sector, double parity) {
   if (sector.sign_x != sector.sign_y) return "E";
@@ -96,19 +89,20 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   const Eigen::VectorXd& vertex_mass = model.reference().vertex_areas();
   const Eigen::VectorXd dof_mass = vertex_mass.replicate(1, 3).transpose().reshaped();
   const LinearVertexSymmetry s4 = examples::reference_s4(P);
-  // Each sector's subspace, once: the states invariant under the mirrors with their signs
-  // flipped where the sector's modes are odd. The even-even one is the cone's own mirror
-  // subspace, the frame the states are brought into.
+  // Each sector's basis, once: the symmetry class of the mirrors' group with the sector's
+  // parities. The even-even one is the cone's own mirror subspace, the frame the states are
+  // brought into.
+  const double tolerance = 1e-9 * P.cwiseAbs().maxCoeff();
+  const SymmetricSubspace frame(P.rows(), {mirror_symmetry(P, 0, tolerance),
+                                           mirror_symmetry(P, 1, tolerance)});
   struct SectorSpace {
     Sector sector;
-    SymmetricSubspace subspace;
+    Eigen::SparseMatrix<double> basis;
   };
   std::vector<SectorSpace> sectors;
-  for (const Sector& sector : {Sector{"even_even", 1.0, 1.0}, Sector{"odd_odd", -1.0, -1.0},
-                               Sector{"even_odd", 1.0, -1.0}})
-    sectors.push_back({sector, SymmetricSubspace(P.rows(), {signed_mirror(P, 0, sector.sign_x),
-                                                            signed_mirror(P, 1, sector.sign_y)})});
-  const SymmetricSubspace& frame = sectors.front().subspace;
+  for (const Sector& sector : {Sector{"even_even", 1, 1}, Sector{"odd_odd", -1, -1},
+                               Sector{"even_odd", 1, -1}})
+    sectors.push_back({sector, frame.group().class_basis({sector.sign_x, sector.sign_y})});
 
   // The saved state nearest each excess angle asked for, each once.
   const std::vector<BranchSample> samples = nearest_saved_states(dir, at, model.dimension());
@@ -134,8 +128,7 @@ int run(const std::string& dir, examples::CommandLine& cl) {
     energy.evaluate(x, nullptr, &upper);
     const Eigen::SparseMatrix<double> hessian = upper.selfadjointView<Eigen::Upper>();
     std::printf("%9.5f  asymmetry %.2e m\n", sample.parameter, asymmetry);
-    for (const auto& [sector, subspace] : sectors) {
-      const Eigen::SparseMatrix<double>& Q = subspace.basis();
+    for (const auto& [sector, Q] : sectors) {
       const Eigen::SparseMatrix<double> reduced = (Q.transpose() * hessian * Q).pruned();
       const Eigen::SparseMatrix<double> reduced_upper = reduced.triangularView<Eigen::Upper>();
       // diag(Q^T M Q): Q's columns are normalised signed sums over orbits of dofs of equal
@@ -148,7 +141,7 @@ int run(const std::string& dir, examples::CommandLine& cl) {
       EigenpairOptions options;
       options.count = count + 10;
       const Eigenpairs pinned = lowest_mass_normalized_eigenpairs_of_matrix(
-          reduced_upper, reduced_mass, subspace.rigid_motion_pins(x), options);
+          reduced_upper, reduced_mass, subspace_rigid_motions(Q, x).pins, options);
       const RigidFreeEigenpairs ritz = rigid_free_eigenpairs(
           pinned, Q.transpose() * rigid_velocity_fields(x), reduced_mass, count);
       for (Eigen::Index k = 0; k < ritz.values.size(); ++k) {

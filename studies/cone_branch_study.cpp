@@ -127,6 +127,8 @@ class ConeBranchRun {
   std::vector<Eigen::Index> pinned_;
   std::shared_ptr<const SymmetricSubspace> subspace_;
   std::unique_ptr<TurnFreeStabilityIndex> turn_free_index_;  ///< index_excludes_pattern_turn
+  /// The same index class by class for the samples traced in the subspace (null without one).
+  std::unique_ptr<SymmetryClassStabilityIndex> class_index_;
   /// The phase condition's functional, unit length, where the cone is traced in the full space
   /// with one (empty otherwise).
   Eigen::VectorXd phase_functional_;
@@ -218,6 +220,8 @@ void ConeBranchRun::set_up() {
         cone_mirror_subspace(*model_, scene_.geometry.radius, scene_.continuation.mode);
     if (!choice.note.empty()) say("# " + choice.note);
     subspace_ = std::move(choice.subspace);
+    if (subspace_ && turn_free_index_ && subspace_->group().classes_split_space())
+      class_index_ = std::make_unique<SymmetryClassStabilityIndex>(*model_, subspace_->group());
   }
   arclength_.initial_step = scene_.continuation.max_step / 4;
   arclength_.max_step = scene_.continuation.max_step;
@@ -373,7 +377,12 @@ void ConeBranchRun::snapshot(double phi, const Eigen::VectorXd& x, const std::st
 /// negative count on the hyperplane orthogonal to the turn; the plain count where the state
 /// is axisymmetric to within 1e-9 R (no pattern, so nothing to turn).
 int ConeBranchRun::index_without_pattern_turn(const BranchSample& s) {
-  return turn_free_index_->at(s.x, s.parameter);
+  if (!class_index_ || s.reduced_x.size() != subspace_->dimension())
+    return turn_free_index_->at(s.x, s.parameter);
+  // Class by class at the sample's state in the subspace's frame, where the mirrors are the
+  // coordinate planes.
+  return turn_free_index_by_class(*class_index_, *model_, subspace_->expand(s.reduced_x),
+                                  s.parameter);
 }
 
 /// |mu|: the force (N) with which the phase condition holds the sample's pattern, the gradient's

@@ -255,12 +255,24 @@ void EconeContactRun::set_up_contact() {
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
   // finite angle over any step: short steps are accepted on a converged corrector alone.
   c.arclength.angle_test_max_step = 0.02 * st.contact_max_step;
+  c.start_relaxation = scene_penalty_relaxation(scene_, *model_);
   if (st.index_excludes_pattern_turn) {
+    // Per segment: class by class for the samples traced in a subspace whose group splits the
+    // space, else the full Hessian's count with its analysis kept over the segment.
     const ShellModel& model = *model_;
     const std::vector<Eigen::Index> pins = pinned_;
-    c.stability_index = [&model, pins](const ParametrizedObjective& energy, const BranchSample& s) {
-      TurnFreeStabilityIndex index(energy, model, pins);
-      return index.at(s.x, s.parameter);
+    c.stability_index_for_segment = [&model, pins](const ParametrizedObjective& energy,
+                                                   const SymmetricSubspace* subspace) {
+      auto full = std::make_shared<TurnFreeStabilityIndex>(energy, model, pins);
+      std::shared_ptr<SymmetryClassStabilityIndex> by_class;
+      if (subspace && subspace->group().classes_split_space())
+        by_class = std::make_shared<SymmetryClassStabilityIndex>(energy, subspace->group());
+      return [full, by_class, subspace, &model](const BranchSample& s) {
+        if (by_class && s.reduced_x.size() == subspace->dimension())
+          return turn_free_index_by_class(*by_class, model, subspace->expand(s.reduced_x),
+                                          s.parameter);
+        return full->at(s.x, s.parameter);
+      };
     };
   }
   if (st.symmetric_subspace) {

@@ -50,4 +50,13 @@ int TurnFreeStabilityIndex::at(const Eigen::Ref<const Eigen::VectorXd>& x, doubl
   return count_->negative_orthogonal_to(turn);
 }
 
+int turn_free_index_by_class(SymmetryClassStabilityIndex& index, const ShellModel& model,
+                             const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e) {
+  const int full = index.at(x, phi_e);
+  const Eigen::VectorXd turn = pattern_rotation(model, x, {});
+  const double size = model.reference_positions().lpNorm<Eigen::Infinity>();
+  if (turn.lpNorm<Eigen::Infinity>() <= 1e-9 * size) return full;
+  return index.negative_orthogonal_to(turn);
+}
+
 }  // namespace growshell

@@ -22,6 +22,7 @@
 #include "core/parametrized_objective.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "solvers/stability/hessian_negative_count.hpp"
+#include "solvers/stability/symmetry_class_stability_index.hpp"
 
 namespace growshell {
 
@@ -69,5 +70,16 @@ class TurnFreeStabilityIndex {
   std::vector<Eigen::Index> count_pins_;
   std::unique_ptr<HessianNegativeCount> count_;  ///< with count_pins_
 };
+
+/// The same index at a state x of `model` that has the symmetries of `index`'s group about the
+/// coordinate planes and axes through the origin (a state of a trace in a symmetric subspace,
+/// expanded in the subspace's frame: BranchSample::reduced_x), class by class: index.at(x,
+/// phi_e), less one where the turn (pattern_rotation without pins, which lies in one class:
+/// the one odd under both mirrors of the two-fold cone, the trivial one of a half turn) leaves
+/// the count (SymmetryClassStabilityIndex::negative_orthogonal_to), and the full count where
+/// the state has no pattern to turn. The rigid motions are held class by class at dofs chosen
+/// on x, so no pin loses its lever arm. Throws as index.at and negative_orthogonal_to.
+int turn_free_index_by_class(SymmetryClassStabilityIndex& index, const ShellModel& model,
+                             const Eigen::Ref<const Eigen::VectorXd>& x, double phi_e);
 
 }  // namespace growshell

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/objective_at_parameter.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
@@ -162,6 +163,8 @@ ContactBranchTrace trace_contact_branch(
   bool have_fallback = false;
   // This segment's start failed before and is corrected with halved updates.
   bool safeguarded = false;
+  // This segment's start failed that too and was relaxed by minimisation.
+  bool relaxed = false;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -181,10 +184,8 @@ ContactBranchTrace trace_contact_branch(
                            model.dimension(), options.gap);
     PenalizedEnergy family(model, penalty);
     ArclengthOptions segment_options = arc;
-    if (options.stability_index)
-      segment_options.stability_index = [&options, &family](const BranchSample& s) {
-        return options.stability_index(family, s);
-      };
+    if (options.stability_index_for_segment)
+      segment_options.stability_index = options.stability_index_for_segment(family, subspace);
     if (safeguarded) {
       // Halved updates converge from there, but slowly while the iterates cross pieces of
       // the penalty's Hessian: twice the iterations.
@@ -290,7 +291,7 @@ ContactBranchTrace trace_contact_branch(
     }
     retries = 0;
     margin = options.candidate_margin;
-    if (samples_in_segment > 0) safeguarded = false;
+    if (samples_in_segment > 0) safeguarded = relaxed = false;
     out.cost.continuation += trace.cost;
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
@@ -317,6 +318,20 @@ ContactBranchTrace trace_contact_branch(
         safeguarded = true;
         ++out.cost.safeguarded_starts;
         continue;
+      }
+      if (!relaxed && options.start_relaxation && !subspace) {
+        // The minimum of the rebuilt set's energy next to the start, found by a minimisation
+        // whose line search keeps it from diverging.
+        relaxed = true;
+        ++out.cost.relaxed_starts;
+        NewtonOptions relaxation = *options.start_relaxation;
+        relaxation.max_travel = std::min(relaxation.max_travel, margin);
+        ObjectiveAtParameter at(family, start_phi);
+        const NewtonResult r = NewtonSolver(relaxation).minimize(at, start_x, segment_fixed);
+        if (r.status == NewtonStatus::Converged) {
+          start_x = r.x;
+          continue;
+        }
       }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +
                     " did not converge: " + trace.message;

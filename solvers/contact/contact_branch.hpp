@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
+#include "solvers/newton/newton_solver.hpp"
 
 namespace growshell {
 
@@ -72,6 +74,14 @@ struct ContactBranchOptions {
   /// ends at once. Only starts that would otherwise end the trace are retried, so a trace that
   /// never meets one is the same with or without it.
   int start_residual_backtracks = 10;
+  /// If set, a start of a full-space trace that fails even that is relaxed at its phi_e on the
+  /// rebuilt pair set by energy minimisation (NewtonSolver with these options, fixed_dofs held,
+  /// max_travel at most the candidate margin, so that no pair outside the set can close in)
+  /// and the segment starts from the minimum, an equilibrium of the rebuilt set where the
+  /// corrector's Newton updates diverged. Minimisation keeps to a stable branch: a start whose
+  /// relaxation does not converge within the travel, or a trace in a subspace, ends as before.
+  /// Unset: the trace ends at once.
+  std::optional<NewtonOptions> start_relaxation;
   /// If set (a subspace of the model's unknowns), the branch is traced in it
   /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it
   /// follows a symmetric branch through the branch points where it loses stability to
@@ -80,13 +90,19 @@ struct ContactBranchOptions {
   /// states, and their negative count (stability index, special points) is the full
   /// Hessian's with fixed_dofs held, one extra LDL^T factorisation per corrected point.
   std::shared_ptr<const SymmetricSubspace> symmetric_subspace;
-  /// If set, the stability index of every corrected sample (BranchSample::negative_eigenvalues,
-  /// and so the special points): called with the segment's energy (the shell with the penalty
-  /// on the segment's pairs, as a function of phi_e) and the full-space sample, e.g. a count
-  /// without the fold pattern's turn (studies/turn_free_stability_index.hpp). Unset: the
-  /// negative count of the penalised Hessian with fixed_dofs held.
-  std::function<int(const ParametrizedObjective& energy, const BranchSample& sample)>
-      stability_index;
+  /// If set, the stability index of the corrected samples (BranchSample::negative_eigenvalues,
+  /// and so the special points): called once per segment with the segment's energy (the shell
+  /// with the penalty on the segment's pairs, as a function of phi_e, alive while the segment
+  /// is traced) and the subspace it is traced in (symmetric_subspace, or null), it returns the
+  /// count of each full-space sample of that segment (which carries its reduced_x in a
+  /// subspace), e.g. one without the fold pattern's turn
+  /// (studies/turn_free_stability_index.hpp); the function may keep work it can reuse over the
+  /// segment, such as the analysis of the energy's Hessian pattern. Unset: the negative count
+  /// of the penalised Hessian without its rigid motions (class by class in a subspace whose
+  /// group splits the space, else with fixed_dofs held).
+  std::function<std::function<int(const BranchSample& sample)>(
+      const ParametrizedObjective& energy, const SymmetricSubspace* subspace)>
+      stability_index_for_segment;
 };
 
 /// A converged point of a branch with contact.
@@ -119,6 +135,8 @@ struct ContactBranchCost {
   int repinnings = 0;  ///< segments that chose new rigid-motion pins (repin_above_condition)
   /// Segment starts corrected again with halved updates (start_residual_backtracks).
   int safeguarded_starts = 0;
+  /// Segment starts relaxed by energy minimisation (start_relaxation) after that failed.
+  int relaxed_starts = 0;
 };
 
 /// Result of trace_contact_branch. `last` is always the last converged sample (the start if

@@ -1,11 +1,13 @@
 #include "solvers/continuation/subspace_branch_trace.hpp"
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "solvers/continuation/symmetric_subspace_family.hpp"
 #include "solvers/stability/hessian_negative_count.hpp"
+#include "solvers/stability/symmetry_class_stability_index.hpp"
 
 namespace growshell {
 namespace {
@@ -52,7 +54,17 @@ BranchTrace trace_from_reduced(const ParametrizedObjective& family,
   Eigen::VectorXd direction = subspace.restrict_to(frame.rotate(direction_state));
   for (const Eigen::Index d : pins) direction(d) = 0.0;
 
-  HessianNegativeCount full_count(family, fixed_dofs);
+  // The default index: class by class where the subspace's group splits the space (the
+  // blocks of its symmetry classes, factorised at the expanded state in the subspace's frame),
+  // else the full Hessian with the caller's pins.
+  std::unique_ptr<SymmetryClassStabilityIndex> class_index;
+  std::unique_ptr<HessianNegativeCount> full_count;
+  if (!options.stability_index) {
+    if (subspace.group().classes_split_space())
+      class_index = std::make_unique<SymmetryClassStabilityIndex>(family, subspace.group());
+    else
+      full_count = std::make_unique<HessianNegativeCount>(family, fixed_dofs);
+  }
   ArclengthOptions o = options;
   const auto free_full =
       static_cast<double>(family.dimension() - static_cast<Eigen::Index>(fixed_dofs.size()));
@@ -60,10 +72,14 @@ BranchTrace trace_from_reduced(const ParametrizedObjective& family,
       static_cast<double>(subspace.dimension() - static_cast<Eigen::Index>(pins.size()));
   o.state_weight = options.state_weight * free_reduced / free_full;
   o.stability_index = [&](const BranchSample& s) {
+    if (class_index) return class_index->at(subspace.expand(s.x), s.parameter);
     BranchSample full;
     full.parameter = s.parameter;
     full.x = state_to_caller(s.x);
-    return options.stability_index ? options.stability_index(full) : full_count.at(full.x, full.parameter);
+    full.reduced_x = s.x;
+    full.reduced_frame = frame;
+    return options.stability_index ? options.stability_index(full)
+                                   : full_count->at(full.x, full.parameter);
   };
   std::vector<BranchEvent> full_events = events;
   for (BranchEvent& e : full_events)

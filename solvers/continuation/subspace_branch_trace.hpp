@@ -22,8 +22,11 @@ namespace growshell {
 /// arclength weight rescaled so that a step measures the same change of the full state. Every
 /// sample, special point and event (and the result's states) is handed back as a full state in
 /// the caller's frame; event test functions see such samples too. The samples' negative count
-/// is options.stability_index of the full sample if set, else the negative count of the full
-/// Hessian with `fixed_dofs` held (one more assembly and LDL^T per corrected point; cost in
+/// is options.stability_index of the full sample (which also carries its reduced_x and
+/// reduced_frame) if set, else the negative count of the full Hessian without its rigid
+/// motions: class by class (SymmetryClassStabilityIndex, at the expanded state in the
+/// subspace's frame) where the subspace's group splits the space, else with `fixed_dofs` held
+/// (one more assembly and factorisation per corrected point either way; cost in
 /// TraceCost::stability_*). Throws std::invalid_argument if the subspace is for another
 /// dimension, and as trace_branch_along and SymmetricSubspace::aligning_motion.
 BranchTrace trace_branch_in_subspace(

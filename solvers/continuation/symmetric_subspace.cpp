@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <stdexcept>
 #include <string>
+
+#include "solvers/stability/subspace_rigid_motions.hpp"
 
 namespace growshell {
 
@@ -28,90 +29,12 @@ Eigen::Matrix3d difference_directions(const Eigen::Ref<const Eigen::VectorXd>& x
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors();
 }
 
-bool same(const VertexSymmetry& a, const VertexSymmetry& b) {
-  return a.signs == b.signs && a.image == b.image;
-}
-
-/// a after b: v -> a(b(v)), signs multiplied (the S are diagonal, so they commute).
-VertexSymmetry compose(const VertexSymmetry& a, const VertexSymmetry& b) {
-  VertexSymmetry out;
-  out.signs = a.signs.cwiseProduct(b.signs);
-  out.image.resize(b.image.size());
-  for (std::size_t v = 0; v < b.image.size(); ++v)
-    out.image[v] = a.image[static_cast<std::size_t>(b.image[v])];
-  return out;
-}
-
-void validate(Eigen::Index vertex_count, const VertexSymmetry& g, std::size_t which) {
-  const std::string name = "SymmetricSubspace: generator " + std::to_string(which);
-  if (static_cast<Eigen::Index>(g.image.size()) != vertex_count)
-    throw std::invalid_argument(name + " maps " + std::to_string(g.image.size()) +
-                                " vertices, expected " + std::to_string(vertex_count));
-  std::vector<char> hit(g.image.size(), 0);
-  for (const int u : g.image) {
-    if (u < 0 || u >= vertex_count || hit[static_cast<std::size_t>(u)])
-      throw std::invalid_argument(name + " is not a permutation of the vertices");
-    hit[static_cast<std::size_t>(u)] = 1;
-  }
-  for (int c = 0; c < 3; ++c)
-    if (g.signs(c) != 1.0 && g.signs(c) != -1.0)
-      throw std::invalid_argument(name + ": signs must be +1 or -1");
-}
-
 }  // namespace
 
 SymmetricSubspace::SymmetricSubspace(Eigen::Index vertex_count,
-                                     const std::vector<VertexSymmetry>& generators) {
-  if (vertex_count < 1) throw std::invalid_argument("SymmetricSubspace: no vertices");
-  for (std::size_t k = 0; k < generators.size(); ++k) validate(vertex_count, generators[k], k);
-  generators_ = generators;
-  // The group: closure of the generators under composition.
-  VertexSymmetry identity;
-  identity.image.resize(static_cast<std::size_t>(vertex_count));
-  for (Eigen::Index v = 0; v < vertex_count; ++v)
-    identity.image[static_cast<std::size_t>(v)] = static_cast<int>(v);
-  std::vector<VertexSymmetry> group{identity};
-  for (std::size_t k = 0; k < group.size(); ++k) {
-    for (const VertexSymmetry& g : generators) {
-      VertexSymmetry h = compose(g, group[k]);
-      if (std::none_of(group.begin(), group.end(),
-                       [&](const VertexSymmetry& e) { return same(e, h); })) {
-        group.push_back(std::move(h));
-        if (group.size() > 64)
-          throw std::invalid_argument(
-              "SymmetricSubspace: the generators span more than 64 elements");
-      }
-    }
-  }
-  group_order_ = static_cast<int>(group.size());
-
-  // One column per dof orbit: sum_g S_g(c) e_{(g(v), c)}, zero if the orbit meets itself with
-  // both signs.
-  const Eigen::Index n = 3 * vertex_count;
-  std::vector<char> visited(static_cast<std::size_t>(n), 0);
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::Index column = 0;
-  for (Eigen::Index dof = 0; dof < n; ++dof) {
-    if (visited[static_cast<std::size_t>(dof)]) continue;
-    const Eigen::Index v = dof / 3;
-    const int c = static_cast<int>(dof % 3);
-    std::map<Eigen::Index, double> orbit;
-    for (const VertexSymmetry& g : group) {
-      const Eigen::Index image = 3 * g.image[static_cast<std::size_t>(v)] + c;
-      orbit[image] += g.signs(c);
-      visited[static_cast<std::size_t>(image)] = 1;
-    }
-    double norm2 = 0.0;
-    for (const auto& [i, a] : orbit) norm2 += a * a;
-    if (norm2 == 0.0) continue;  // odd under an element that fixes the dof
-    const double scale = 1.0 / std::sqrt(norm2);
-    for (const auto& [i, a] : orbit)
-      if (a != 0.0) entries.emplace_back(i, column, a * scale);
-    ++column;
-  }
-  basis_.resize(n, column);
-  basis_.setFromTriplets(entries.begin(), entries.end());
-  basis_.makeCompressed();
+                                     const std::vector<VertexSymmetry>& generators)
+    : group_(vertex_count, generators) {
+  basis_ = group_.class_basis(std::vector<int>(generators.size(), 1));
 }
 
 Eigen::VectorXd SymmetricSubspace::restrict_to(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -138,40 +61,7 @@ std::vector<Eigen::Index> SymmetricSubspace::rigid_motion_pins(
   if (x.size() != full_dimension())
     throw std::invalid_argument("SymmetricSubspace::rigid_motion_pins: need " +
                                 std::to_string(full_dimension()) + " entries");
-  // The six rigid velocity fields at x: translations, rotations about the origin (the
-  // symmetries fix the origin, so they map rigid fields to rigid fields).
-  Eigen::MatrixXd fields = rigid_velocity_fields(x);
-  for (int k = 0; k < 6; ++k) {
-    const double norm = fields.col(k).norm();
-    if (norm > 0.0) fields.col(k) /= norm;
-  }
-  // Symmetric parts of the unit fields: singular values near 1 for the rigid motions in the
-  // subspace, of the order of the state's asymmetry (relative) for the others.
-  const Eigen::MatrixXd reduced = basis_.transpose() * fields;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeThinU);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  Eigen::Index rank = 0;
-  while (rank < sigma.size() && sigma(rank) > 1e-3) ++rank;
-  if (rank == 0) return {};
-  // Column-pivoted Gram-Schmidt on the modes' rows: each pin the dof with the largest
-  // component left after the earlier pins' are projected out. The symmetric rigid fields have
-  // many equal components (a translation along z gives every orbit of the same size the same
-  // one), so the pivot is chosen among those within a relative 1e-6 of the largest by the
-  // lowest index: the same dofs at every state of a branch, not whichever round-off favours,
-  // so that a trace resumed from any of its states is parametrised as the one that wrote it.
-  Eigen::MatrixXd rows = svd.matrixU().leftCols(rank).transpose();  // rank x dimension
-  std::vector<Eigen::Index> pins;
-  for (Eigen::Index k = 0; k < rank; ++k) {
-    const Eigen::VectorXd norms = rows.colwise().norm().transpose();
-    const double largest = norms.maxCoeff();
-    Eigen::Index pivot = 0;
-    while (norms(pivot) < (1.0 - 1e-6) * largest) ++pivot;
-    pins.push_back(pivot);
-    const Eigen::VectorXd q = rows.col(pivot) / norms(pivot);
-    rows -= q * (q.transpose() * rows);
-  }
-  std::sort(pins.begin(), pins.end());
-  return pins;
+  return subspace_rigid_motions(basis_, x).pins;
 }
 
 void SymmetricSubspace::set_pin_configuration(const Eigen::Ref<const Eigen::VectorXd>& x) {
@@ -197,11 +87,11 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
     throw std::invalid_argument("SymmetricSubspace::aligning_motion: need " +
                                 std::to_string(full_dimension()) + " entries");
   const Eigen::Index nv = x.size() / 3;
-  if (generators_.size() == 1 && (generators_[0].signs.array() < 0.0).count() == 2)
+  if (group_.generators().size() == 1 && (group_.generators()[0].signs.array() < 0.0).count() == 2)
     return half_turn_aligning_motion(x);
   std::vector<int> axes;
   std::vector<Eigen::Vector3d> normals;
-  for (const VertexSymmetry& g : generators_) {
+  for (const VertexSymmetry& g : group_.generators()) {
     if ((g.signs.array() < 0.0).count() != 1)
       throw std::invalid_argument(
           "SymmetricSubspace::aligning_motion: every generator must be a mirror (one sign -1)");
@@ -240,7 +130,7 @@ RigidMotion SymmetricSubspace::aligning_motion(const Eigen::Ref<const Eigen::Vec
 
 RigidMotion SymmetricSubspace::half_turn_aligning_motion(
     const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  const VertexSymmetry& g = generators_[0];
+  const VertexSymmetry& g = group_.generators()[0];
   int axis = 0;
   g.signs.maxCoeff(&axis);
   // For a state with the half turn about the line c + t u, x_v - x_image(v) = 2 P(x_v - c),

@@ -14,6 +14,7 @@
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/mesh/rigid_motion.hpp"
 #include "libshell/mesh/vertex_symmetry.hpp"
+#include "solvers/stability/vertex_symmetry_group.hpp"
 
 namespace growshell {
 
@@ -29,7 +30,9 @@ class SymmetricSubspace {
   /// Number of basis vectors (reduced unknowns).
   Eigen::Index dimension() const { return basis_.cols(); }
   /// Order of the generated group.
-  int group_order() const { return group_order_; }
+  int group_order() const { return group_.order(); }
+  /// The generated group, whose trivial character's class this subspace is.
+  const VertexSymmetryGroup& group() const { return group_; }
   /// Q: full_dimension x dimension, orthonormal columns, one per orbit of a dof (v, c) that
   /// no group element maps to minus itself; the column is the normalised signed sum over the
   /// orbit.
@@ -90,9 +93,8 @@ class SymmetricSubspace {
  private:
   RigidMotion half_turn_aligning_motion(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
-  std::vector<VertexSymmetry> generators_;
+  VertexSymmetryGroup group_;
   Eigen::SparseMatrix<double> basis_;
-  int group_order_ = 1;
   Eigen::VectorXd pin_configuration_;  ///< empty: the pins are chosen at each trace's start
 };
 

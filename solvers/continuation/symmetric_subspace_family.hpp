@@ -10,6 +10,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/parametrized_objective.hpp"
+#include "solvers/stability/subspace_hessian_projection.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 
 namespace growshell {
@@ -21,8 +22,9 @@ class SymmetricSubspaceFamily final : public ParametrizedObjective {
   SymmetricSubspaceFamily(const ParametrizedObjective& full, const SymmetricSubspace& subspace);
 
   Eigen::Index dimension() const override { return subspace_.dimension(); }
-  /// Upper triangle of the structural pattern of Q^T H Q (fixed, from |Q|^T |H| |Q|).
-  Eigen::SparseMatrix<double> hessian_pattern() const override { return pattern_; }
+  /// Upper triangle of the structure of Q^T H Q (fixed: the entries that a stored entry of
+  /// the full pattern reaches).
+  Eigen::SparseMatrix<double> hessian_pattern() const override { return projection_.pattern(); }
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& y, double lambda,
                   Eigen::VectorXd* gradient,
                   Eigen::SparseMatrix<double>* hessian_upper) const override;
@@ -36,7 +38,7 @@ class SymmetricSubspaceFamily final : public ParametrizedObjective {
   const ParametrizedObjective& full_;
   const SymmetricSubspace& subspace_;
   Eigen::SparseMatrix<double> basis_transpose_;
-  Eigen::SparseMatrix<double> pattern_;
+  SubspaceHessianProjection projection_;  ///< Q^T H Q in one pass over H's values
 };
 
 }  // namespace growshell

@@ -96,23 +96,29 @@ TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
   }
 }
 
-// ContactBranchOptions::stability_index: the samples carry the caller's count, and it is called
-// with the segment's energy, of which each sample is an equilibrium (its gradient, pinned dofs
-// aside, below the corrector's tolerance (inf-norm) at the sample's excess angle).
+// ContactBranchOptions::stability_index_for_segment: the samples carry the caller's count, and
+// it is made once per segment with the segment's energy, of which each sample of the segment is
+// an equilibrium (its gradient, pinned dofs aside, below the corrector's tolerance (inf-norm)
+// at the sample's excess angle).
 TEST(ContactBranch, TheCallersStabilityIndexIsCalledWithTheSegmentsEnergy) {
   GrownDisc& d = disc();
   const Eigen::VectorXd& x = d.start();
   ContactBranchOptions o = d.options();
   o.arclength.max_steps = 3;
-  int calls = 0;
+  int calls = 0, segments = 0;
   double worst = 0.0;
-  o.stability_index = [&](const ParametrizedObjective& energy, const BranchSample& s) {
-    ++calls;
-    Eigen::VectorXd g;
-    energy.evaluate(s.x, s.parameter, &g, nullptr);
-    for (const Eigen::Index dof : d.pinned) g(dof) = 0.0;
-    worst = std::max(worst, g.cwiseAbs().maxCoeff() / o.arclength.gradient_tolerance);
-    return 7;
+  o.stability_index_for_segment = [&](const ParametrizedObjective& energy,
+                                      const SymmetricSubspace* subspace) {
+    ++segments;
+    EXPECT_EQ(subspace, nullptr);
+    return [&](const BranchSample& s) {
+      ++calls;
+      Eigen::VectorXd g;
+      energy.evaluate(s.x, s.parameter, &g, nullptr);
+      for (const Eigen::Index dof : d.pinned) g(dof) = 0.0;
+      worst = std::max(worst, g.cwiseAbs().maxCoeff() / o.arclength.gradient_tolerance);
+      return 7;
+    };
   };
   std::vector<ContactBranchSample> samples;
   const ContactBranchTrace t = trace_contact_branch(
@@ -122,6 +128,7 @@ TEST(ContactBranch, TheCallersStabilityIndexIsCalledWithTheSegmentsEnergy) {
   ASSERT_EQ(samples.size(), 4u);
   for (const ContactBranchSample& s : samples) EXPECT_EQ(s.sample.negative_eigenvalues, 7);
   EXPECT_GE(calls, 4);
+  EXPECT_EQ(segments, t.cost.segments);
   EXPECT_LT(worst, 1.0);
   EXPECT_TRUE(t.special_points.empty());
 }
