@@ -36,19 +36,25 @@ int HessianNegativeCount::negative_orthogonal_to(
   if (!direction.allFinite())
     throw std::invalid_argument(
         "HessianNegativeCount::negative_orthogonal_to: the direction is not finite");
-  Eigen::VectorXd d = direction;
-  fixed_.zero_fixed(d);
-  if (fixed_.free_inf_norm(d) == 0.0)
-    throw std::invalid_argument(
-        "HessianNegativeCount::negative_orthogonal_to: the direction vanishes on the free dofs");
+  const double schur = inverse_quadratic_form(fixed_, factorization_, direction,
+                                              "HessianNegativeCount::negative_orthogonal_to");
+  return schur < 0.0 ? negative_ - 1 : negative_;
+}
+
+double inverse_quadratic_form(const FixedDofElimination& fixed,
+                              const SymmetricIndefiniteFactorization& factorization,
+                              Eigen::VectorXd direction, const std::string& caller) {
+  fixed.zero_fixed(direction);
+  if (fixed.free_inf_norm(direction) == 0.0)
+    throw std::invalid_argument(caller + ": the direction vanishes on the free dofs");
   // The fixed dofs' rows and columns of the eliminated Hessian are zero off the diagonal, so
   // with d zero there the solve is H_f^{-1} d on the free dofs and zero on the fixed ones.
-  const double schur = d.dot(factorization_.solve(d));
-  if (!std::isfinite(schur) || schur == 0.0)
-    throw std::runtime_error(
-        "HessianNegativeCount::negative_orthogonal_to: d^T H^-1 d is zero or not finite: the "
-        "Hessian restricted to the hyperplane is singular");
-  return schur < 0.0 ? negative_ - 1 : negative_;
+  const double value = direction.dot(factorization.solve(direction));
+  if (!std::isfinite(value) || value == 0.0)
+    throw std::runtime_error(caller +
+                             ": d^T H^-1 d is zero or not finite: the Hessian restricted to the "
+                             "hyperplane is singular");
+  return value;
 }
 
 }  // namespace growshell

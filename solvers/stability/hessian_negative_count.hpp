@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "core/parametrized_objective.hpp"
@@ -50,5 +51,16 @@ class HessianNegativeCount {
   SymmetricIndefiniteFactorization factorization_;
   int negative_ = -1;  ///< of the last at(); -1 before it
 };
+
+/// d^T H_f^{-1} d for the Hessian H_f eliminated by `fixed` and factorised by `factorization`,
+/// d the direction with its fixed entries zeroed (the eliminated rows and columns are zero off
+/// the diagonal, so the solve is H_f^{-1} d on the free dofs). Its sign decides whether leaving
+/// d out lowers the negative count by one (HessianNegativeCount::negative_orthogonal_to).
+/// Throws std::invalid_argument naming `caller` if d vanishes on the free dofs, and
+/// std::runtime_error if the value is zero or not finite (H_f restricted to the hyperplane
+/// orthogonal to d is then singular).
+double inverse_quadratic_form(const FixedDofElimination& fixed,
+                              const SymmetricIndefiniteFactorization& factorization,
+                              Eigen::VectorXd direction, const std::string& caller);
 
 }  // namespace growshell

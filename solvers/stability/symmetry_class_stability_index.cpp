@@ -2,11 +2,11 @@
 
 #include <Eigen/LU>
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "solvers/newton/fixed_dof_elimination.hpp"
+#include "solvers/stability/hessian_negative_count.hpp"
 #include "solvers/stability/subspace_hessian_projection.hpp"
 #include "solvers/stability/subspace_rigid_motions.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
@@ -147,16 +147,8 @@ int SymmetryClassStabilityIndex::negative_orthogonal_to(
     }
     d -= block.rigid.motions * at_pins.partialPivLu().solve(d_at_pins);
   }
-  block.fixed->zero_fixed(d);
-  if (block.fixed->free_inf_norm(d) == 0.0)
-    throw std::invalid_argument(
-        "SymmetryClassStabilityIndex::negative_orthogonal_to: the direction vanishes on the "
-        "free dofs");
-  const double schur = d.dot(block.factorization.solve(d));
-  if (!std::isfinite(schur) || schur == 0.0)
-    throw std::runtime_error(
-        "SymmetryClassStabilityIndex::negative_orthogonal_to: d^T H_c^-1 d is zero or not "
-        "finite: the block restricted to the hyperplane is singular");
+  const double schur = inverse_quadratic_form(
+      *block.fixed, block.factorization, d, "SymmetryClassStabilityIndex::negative_orthogonal_to");
   int total = 0;
   for (const int n : class_negatives_) total += n;
   return schur < 0.0 ? total - 1 : total;
