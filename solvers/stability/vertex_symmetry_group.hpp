@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "libshell/mesh/vertex_symmetry.hpp"
@@ -50,6 +51,12 @@ class VertexSymmetryGroup {
   bool classes_split_space() const;
 
  private:
+  /// chi(g) of each element for the given generator signs, from the word the closure found for
+  /// it (a character only if is_character).
+  std::vector<int> word_signs(const std::vector<int>& generator_signs) const;
+  /// Why the classes do not split the space ("" if they do): see splitting_characters.
+  std::string why_classes_do_not_split() const;
+
   Eigen::Index vertex_count_ = 0;
   std::vector<VertexSymmetry> generators_;
   std::vector<VertexSymmetry> elements_;      ///< the identity first
