@@ -28,6 +28,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/objective_at_parameter.hpp"
@@ -40,6 +41,7 @@
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/stability/mass_normalized_eigenpairs.hpp"
 #include "solvers/stability/rigid_free_eigenpairs.hpp"
+#include "solvers/stability/subspace_hessian_projection.hpp"
 #include "solvers/stability/subspace_rigid_motions.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/saved_state.hpp"
@@ -98,11 +100,16 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   struct SectorSpace {
     Sector sector;
     Eigen::SparseMatrix<double> basis;
+    SubspaceHessianProjection projection;  ///< Q^T H Q of the model's Hessian
   };
+  const Eigen::SparseMatrix<double> pattern = model.hessian_pattern();
   std::vector<SectorSpace> sectors;
   for (const Sector& sector : {Sector{"even_even", 1, 1}, Sector{"odd_odd", -1, -1},
-                               Sector{"even_odd", 1, -1}})
-    sectors.push_back({sector, frame.group().class_basis({sector.sign_x, sector.sign_y})});
+                               Sector{"even_odd", 1, -1}}) {
+    Eigen::SparseMatrix<double> basis = frame.group().class_basis({sector.sign_x, sector.sign_y});
+    SubspaceHessianProjection projection(pattern, basis);
+    sectors.push_back({sector, std::move(basis), std::move(projection)});
+  }
 
   // The saved state nearest each excess angle asked for, each once.
   const std::vector<BranchSample> samples = nearest_saved_states(dir, at, model.dimension());
@@ -126,11 +133,10 @@ int run(const std::string& dir, examples::CommandLine& cl) {
     ObjectiveAtParameter energy(model, sample.parameter);
     Eigen::SparseMatrix<double> upper = energy.hessian_pattern();
     energy.evaluate(x, nullptr, &upper);
-    const Eigen::SparseMatrix<double> hessian = upper.selfadjointView<Eigen::Upper>();
     std::printf("%9.5f  asymmetry %.2e m\n", sample.parameter, asymmetry);
-    for (const auto& [sector, Q] : sectors) {
-      const Eigen::SparseMatrix<double> reduced = (Q.transpose() * hessian * Q).pruned();
-      const Eigen::SparseMatrix<double> reduced_upper = reduced.triangularView<Eigen::Upper>();
+    for (const auto& [sector, Q, projection] : sectors) {
+      Eigen::SparseMatrix<double> reduced_upper;
+      projection.project(upper, reduced_upper);
       // diag(Q^T M Q): Q's columns are normalised signed sums over orbits of dofs of equal
       // mass, so Q^T M Q is diagonal.
       const Eigen::VectorXd reduced_mass = Q.cwiseAbs2().transpose() * dof_mass;
