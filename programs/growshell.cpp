@@ -322,9 +322,10 @@ int run_study(const RunCommand& c) {
   }
   if (scene.study.kind == StudyKind::ThicknessSeries)
     draw_figure("plot_thickness_series.py", dir, "thickness_series.png");
-  else if (scene.study.kind == StudyKind::EconeContact)
+  else if (scene.study.kind == StudyKind::EconeContact) {
     draw_figure("plot_econe_contact.py", dir, "econe_contact.png");
-  else if (scene.study.kind == StudyKind::Series)
+    draw_figure("plot_contact_angle.py", dir, "contact_angle.png");
+  } else if (scene.study.kind == StudyKind::Series)
     draw_figure("plot_series.py", dir, "series.png");
   else
     draw_figure("plot_study.py", dir, "eb_hat.png");

@@ -104,6 +104,7 @@ class EconeContactRun {
   void check_hard_contact_points();
   void trace_compared_modes();
   void wind_up();
+  void measure_energy_ratios();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
   }
@@ -836,18 +837,18 @@ void EconeContactRun::measure_turned(EconeTurnedBranch t) {
   results_.turned = std::move(t);
 }
 
-/// Stage 6 (study.hard_contact_at): the saved state nearest each requested phi_e of the turned
-/// and the symmetric branch, solved again under Ipopt's hard constraints and compared with the
+/// Stage 6 (study.hard_contact_at): the saved state nearest each requested phi_e of each branch
+/// of study.hard_contact_branches (the turned and the symmetric one by default), solved again under Ipopt's hard constraints and compared with the
 /// penalty's (studies/hard_contact_check.hpp); each check to BRANCH/hard_contact_phiP.json.
 void EconeContactRun::check_hard_contact_points() {
   for (const double at : scene_.study.hard_contact_at) {
-    for (const char* branch : {"turned", "symmetric"}) {
+    for (const std::string& branch : scene_.study.hard_contact_branches) {
       const std::string branch_dir = dir_ + "/" + branch;
       if (!fs::exists(fs::path(branch_dir) / "states")) continue;  // no turned branch traced
       const std::optional<BranchSample> state =
           nearest_saved_state(branch_dir, at, model_->dimension(), fingerprint_);
       if (!state) continue;
-      say("# stage 6: the " + std::string(branch) + " branch at phi_e = " +
+      say("# stage 6: the " + branch + " branch at phi_e = " +
           fixed(state->parameter, 6) + " under Ipopt's hard contact constraints");
       EconeHardContactPoint p;
       p.branch = branch;
@@ -1125,6 +1126,26 @@ void EconeContactRun::wind_up() {
   results_.wound = std::move(w);
 }
 
+/// f = E_s / E_b at the highest sample of each branch traced with contact (results.json's
+/// energy_ratio_f).
+void EconeContactRun::measure_energy_ratios() {
+  results_.energy_ratio_f.clear();
+  const std::pair<const char*, const BranchRecord*> branches[] = {
+      {"symmetric", symmetric_.get()},
+      {"skewed", skewed_.get()},
+      {"turned", turned_.get()},
+      {"wound", wound_.get()}};
+  for (const auto& [name, record] : branches) {
+    if (!record || record->rows() == 0) continue;
+    std::size_t top = 0;
+    for (std::size_t k = 1; k < record->rows(); ++k)
+      if (record->value(k, "phi_e") > record->value(top, "phi_e")) top = k;
+    results_.energy_ratio_f.push_back(
+        {name, record->value(top, "phi_e"),
+         record->value(top, "E_stretch") / record->value(top, "E_bend")});
+  }
+}
+
 EconeContactResults EconeContactRun::run() {
   const auto started = std::chrono::steady_clock::now();
   fs::create_directories(dir_);
@@ -1149,6 +1170,7 @@ EconeContactResults EconeContactRun::run() {
   check_hard_contact_points();
   trace_compared_modes();
   wind_up();
+  measure_energy_ratios();
 
   EconeContactResults& r = results_;
   r.thickness = h_;
@@ -1175,6 +1197,7 @@ Scene econe_contact_cone_scene(const Scene& scene) {
   cone.study.kind = StudyKind::ConeBranch;
   // The contact era's, not the contact-free cone's.
   cone.study.hard_contact_at.clear();
+  cone.study.hard_contact_branches = default_scene().study.hard_contact_branches;
   cone.study.wind_to.reset();
   cone.study.wind_shapes_at.clear();
   cone.study.compare_modes.clear();

@@ -246,6 +246,7 @@ std::uint64_t econe_stage_key(const Scene& scene, const BranchSample& start) {
   stages.study.wind_to.reset();
   stages.study.wind_shapes_at.clear();
   stages.study.hard_contact_at.clear();
+  stages.study.hard_contact_branches = default_scene().study.hard_contact_branches;
   std::string bytes = scene_to_json(stages);
   const auto append = [&bytes](const void* data, std::size_t size) {
     bytes.append(static_cast<const char*>(data), size);

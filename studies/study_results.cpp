@@ -197,6 +197,11 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   } else {
     j["wound"] = nullptr;
   }
+  Json ratios = Json::array();
+  for (const EconeEnergyRatio& e : r.energy_ratio_f)
+    ratios.push_back(
+        {{"branch", e.branch}, {"phi_e", number_or_null(e.phi_e)}, {"f", number_or_null(e.f)}});
+  j["energy_ratio_f"] = ratios;
   j["warnings"] = r.warnings;
   j["completed"] = r.completed;
   j["end"] = r.end;

@@ -189,9 +189,19 @@ struct EconeCrossing {
   bool skewed_stable = false;   ///< the skewed samples on both sides are stable
 };
 
+/// The energy ratio f = E_s / E_b, stretching over bending energy, at the highest sample of a
+/// branch traced with contact: how far the state is from an isometry of the grown sheet, the
+/// ratio growshell reports for the paper's Fig. 5 (physics.md lists stretching against bending
+/// among the measured quantities; docs/guide/econe_contact.md, "Fig. 5").
+struct EconeEnergyRatio {
+  std::string branch;  ///< "symmetric", "skewed", "turned" or "wound"
+  double phi_e = 0.0;  ///< of the branch's highest sample
+  double f = 0.0;
+};
+
 /// One hard-contact check of the econe_contact study (study.hard_contact_at).
 struct EconeHardContactPoint {
-  std::string branch;  ///< "turned" or "symmetric"
+  std::string branch;  ///< "turned", "symmetric" or "skewed""
   double at = 0.0;     ///< the requested phi_e; the state checked is the nearest saved one
   std::string file;    ///< "BRANCH/hard_contact_phiP.json", relative to DIR
   HardContactCheck check;
@@ -238,7 +248,7 @@ struct EconeContactResults {
   /// above study.symmetry_threshold and below 0.5, a larger one being a failed measure).
   std::optional<double> skewed_lowest_phi, skewed_highest_phi;
   std::optional<EconeIpoptCheck> ipopt;
-  /// The checks of study.hard_contact_at, by phi_e, turned branch first.
+  /// The checks of study.hard_contact_at, by phi_e, in the order of study.hard_contact_branches.
   std::vector<EconeHardContactPoint> hard_contact;
   /// The pattern turned against the mesh at the contact start (study.orientation_check_turns).
   std::optional<EconeOrientationCheck> orientation_check;
@@ -249,6 +259,9 @@ struct EconeContactResults {
   /// The winding beyond the skewed branch (study.wind_to); unset if not asked for or no stable
   /// skewed state was found to start from.
   std::optional<EconeWindUp> wound;
+  /// f = E_s / E_b at the highest sample of each branch traced with contact, in the order
+  /// symmetric, skewed, turned, wound (a branch without samples left out).
+  std::vector<EconeEnergyRatio> energy_ratio_f;
   /// Caveats on the values above, each a sentence naming what it concerns: e.g. a turned
   /// pattern that relaxed to a lower state breaking S4, so that the symmetric branch traced
   /// with its folds on the mesh's mirror lines is not the lowest state of the sheet there.
@@ -282,7 +295,7 @@ struct EconeContactResults {
 /// lowest_energy_above_two_fold, lowest_energy_above_two_fold_phi, completed, end}], wound
 /// ({start_branch, start_phi,
 /// target, reached, highest_phi, steps, failed_steps, jumps, shapes [{phi_e, shell, contact}],
-/// end, seconds} or null), warnings [strings],
+/// end, seconds} or null), energy_ratio_f [{branch, phi_e, f}], warnings [strings],
 /// completed, end, cone_csv, symmetric_csv, skewed_csv, turned_csv (null without the turned
 /// branch), wound_csv (null without the winding), events (each branch's events.json), wall_seconds. Unset and non-finite values are
 /// null.

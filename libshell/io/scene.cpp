@@ -418,6 +418,9 @@ const Field kFields[] = {
   {"study.hard_contact_at",
    [](Scene& s, const Json& v, const std::string& k) { s.study.hard_contact_at = read_number_list(v, k); },
    [](const Scene& s) { return Json(s.study.hard_contact_at); }},
+  {"study.hard_contact_branches",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.hard_contact_branches = read_string_list(v, k); },
+   [](const Scene& s) { return Json(s.study.hard_contact_branches); }},
   {"study.wind_to",
    [](Scene& s, const Json& v, const std::string& k) { s.study.wind_to = read_number_or_null(v, k); },
    [](const Scene& s) { return write_number_or_null(s.study.wind_to); }},
@@ -709,6 +712,17 @@ void validate_scene(const Scene& scene) {
     for (std::size_t j = 0; j < i; ++j)
       if (st.hard_contact_at[j] == st.hard_contact_at[i])
         fail(key + " = " + format(st.hard_contact_at[i]) + " is listed twice");
+  }
+  if (st.hard_contact_branches.empty())
+    fail("study.hard_contact_branches must list at least one of \"turned\", \"symmetric\" and "
+         "\"skewed\"");
+  for (std::size_t i = 0; i < st.hard_contact_branches.size(); ++i) {
+    const std::string key = "study.hard_contact_branches[" + std::to_string(i) + "]";
+    const std::string& b = st.hard_contact_branches[i];
+    if (b != "turned" && b != "symmetric" && b != "skewed")
+      fail(key + " = \"" + b + "\" must be \"turned\", \"symmetric\" or \"skewed\"");
+    for (std::size_t j = 0; j < i; ++j)
+      if (st.hard_contact_branches[j] == b) fail(key + " = \"" + b + "\" is listed twice");
   }
   if (!st.hard_contact_at.empty() && st.kind != StudyKind::EconeContact &&
       !(st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact))

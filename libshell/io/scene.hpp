@@ -299,6 +299,12 @@ struct SceneStudy {
   /// with the penalty's (studies/hard_contact_check.hpp): the contact solver of record at the
   /// reported points, and gamma from its contact forces. Empty by default.
   std::vector<double> hard_contact_at;
+  /// econe_contact only: the branches whose states study.hard_contact_at solves again, in this
+  /// order: each of "turned", "symmetric" and "skewed", at least one, no two equal. The
+  /// default, {"turned", "symmetric"}, is the pair the energy comparisons use; "skewed" gives
+  /// the skewed cone's gamma(phi_e) from the hard constraints (the paper's Fig. 5). A branch the
+  /// study did not trace is skipped.
+  std::vector<std::string> hard_contact_branches = {"turned", "symmetric"};
   /// econe_contact only: beyond the branches, the sheet is grown on from the highest stable
   /// state that breaks S4 (of the skewed or the turned cone) up to this excess angle (rad, finite, above
   /// continuation.phi_max) by minimisation at every step, so that it drops onto whatever stable

@@ -79,6 +79,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "turned",
                                              "compared_modes",
                                              "wound",
+                                             "energy_ratio_f",
                                              "warnings",
                                              "completed",
                                              "end",
@@ -175,6 +176,18 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_TRUE(h["hard_contact"][0]["penalty_gamma"].is_null());
   EXPECT_TRUE(h["hard_contact"][0]["converged"].get<bool>());
   EXPECT_TRUE(j["warnings"].is_array() && j["warnings"].empty());
+  // f = E_s / E_b at each branch's highest sample, by branch, a NaN (no bending) as null.
+  EXPECT_TRUE(j["energy_ratio_f"].is_array() && j["energy_ratio_f"].empty());
+  EconeContactResults ratios = sample_results();
+  ratios.energy_ratio_f = {{"skewed", 7.3, 0.0125},
+                           {"wound", 12.5, std::numeric_limits<double>::quiet_NaN()}};
+  const auto f = nlohmann::json::parse(econe_contact_results_json(ratios));
+  ASSERT_EQ(f["energy_ratio_f"].size(), 2u);
+  EXPECT_EQ(f["energy_ratio_f"][0]["branch"], "skewed");
+  EXPECT_EQ(f["energy_ratio_f"][0]["phi_e"].get<double>(), 7.3);
+  EXPECT_EQ(f["energy_ratio_f"][0]["f"].get<double>(), 0.0125);
+  EXPECT_EQ(f["energy_ratio_f"][1]["branch"], "wound");
+  EXPECT_TRUE(f["energy_ratio_f"][1]["f"].is_null());
   // The orientation check: per turn, a failed relaxation has its message and no state.
   EconeContactResults oriented = sample_results();
   EconeOrientationCheck check;
@@ -265,12 +278,15 @@ TEST(EconeContactConeScene, IsTheContactFreeConeBranchStudyInTheConeFolder) {
   scene.study.wind_to = 12.5;
   scene.study.wind_shapes_at = {8.0};
   scene.study.hard_contact_at = {7.0};
+  scene.study.hard_contact_branches = {"skewed"};
   scene.study.compare_modes = {3};
   const Scene cone_of_winding = econe_contact_cone_scene(scene);
   EXPECT_TRUE(cone_of_winding.study.compare_modes.empty());
   EXPECT_FALSE(cone_of_winding.study.wind_to.has_value());
   EXPECT_TRUE(cone_of_winding.study.wind_shapes_at.empty());
   EXPECT_TRUE(cone_of_winding.study.hard_contact_at.empty());
+  EXPECT_EQ(cone_of_winding.study.hard_contact_branches,
+            default_scene().study.hard_contact_branches);
   EXPECT_NO_THROW(validate_scene(cone_of_winding));
 }
 

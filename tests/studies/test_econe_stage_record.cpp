@@ -218,6 +218,7 @@ TEST(EconeStageKey, ChangesWithWhatStagesTwoToSixDependOnAndWithNothingElse) {
   s.study.wind_to = 12.5;
   s.study.wind_shapes_at = {9.0};
   s.study.hard_contact_at = {7.0};
+  s.study.hard_contact_branches = {"skewed", "turned"};
   EXPECT_EQ(econe_stage_key(s, start), key);
 }
 
