@@ -103,13 +103,15 @@ Studies (study.kind):
   econe_contact
                scene keys: those of cone_branch, physics.contact_exclusion_radius,
                physics.contact_distance, study.skew_search_at, study.contact_max_step,
-               study.penalty_stiffness_factor, study.ipopt_check
-               (docs/guide/econe_contact.md)
+               study.penalty_stiffness_factor, study.ipopt_check, study.hard_contact_at,
+               study.hard_contact_branches, study.wind_to, study.wind_shapes_at,
+               study.compare_modes (docs/guide/econe_contact.md)
                writes DIR/results.json (first contact, phi_e^crit both ways, the skewed cone,
-               the Ipopt check), DIR/cone/ (the cone_branch study up to first contact),
-               DIR/symmetric/ and DIR/skewed/ (branch records with contact), scene.json and
-               econe_contact.png; --resume goes on with the cone from its last state and
-               traces the branches with contact again
+               the hard-contact checks, the energy ratio f), DIR/cone/ (the cone_branch study
+               up to first contact), DIR/symmetric/, DIR/skewed/ and DIR/turned/ (branch
+               records with contact), DIR/wound/ (the winding), scene.json, econe_contact.png
+               and contact_angle.png; --resume goes on with the cone from its last state and
+               takes each finished stage from DIR/stages.json
   series       scene keys: those of the study it runs, study.series_key (a scene key),
                study.series_values (numbers), study.series_of (cone_branch or
                econe_contact), study.series_report (keys of the points' results.json)
@@ -120,7 +122,8 @@ Studies (study.kind):
                values not yet finished
 
 The figure (DIR/eb_hat.png, plot_study.py; DIR/thickness_series.png, plot_thickness_series.py;
-DIR/econe_contact.png, plot_econe_contact.py; DIR/series.png, plot_series.py)
+DIR/econe_contact.png, plot_econe_contact.py, and DIR/contact_angle.png, plot_contact_angle.py;
+DIR/series.png, plot_series.py)
 is drawn with /usr/bin/python3 (the environment variable GROWSHELL_PYTHON names another
 interpreter) when it can import matplotlib; otherwise it is skipped with a note, and the study
 stands.

@@ -29,6 +29,7 @@
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
+#include "studies/econe_contact_cost.hpp"
 #include "studies/econe_stage_record.hpp"
 #include "studies/econe_winding_options.hpp"
 #include "studies/ground_state_exchange.hpp"
@@ -134,6 +135,12 @@ class EconeContactRun {
   EconeBranchOptions options_;
   BranchSample start_;  ///< the cone's last state
   std::unique_ptr<BranchRecord> symmetric_, skewed_, turned_, wound_;
+  /// What this run spent on the stages with contact (DIR/contact_cost.json).
+  EconeContactCost cost_;
+  void count_trace(const char* name, const ContactBranchTrace& trace) {
+    if (trace.steps == 0 && trace.cost.continuation.linearizations == 0) return;  // not traced
+    cost_.traces.push_back({name, trace.steps, trace.failed_steps, trace.cost});
+  }
   /// The highest stable sample that breaks S4 of the skewed and of the turned branch: where
   /// the winding may start.
   struct TopSample {
@@ -675,6 +682,10 @@ EconeBranchResult EconeContactRun::contact_branches() {
   callbacks.on_note = [this](const std::string& text) { say("# " + text); };
   const EconeBranchResult traced = trace_econe_branches(
       *model_, *proxy_, start_.x, start_.parameter, pinned_, options_, callbacks);
+  count_trace("symmetric", traced.symmetric);
+  count_trace("skewed_down", traced.skewed_down);
+  count_trace("skewed_up", traced.skewed_up);
+  cost_.skewed_search_seconds = traced.skewed_search_seconds;
   stages_.contact_branches = {traced, results_.max_s4_defect_symmetric, recorded_top(top_skewed_)};
   save_stages();
   return traced;
@@ -763,11 +774,13 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
                                                        no_direction, -1.0, pins, o, on_sample,
                                                        on_special);
   say("# turned branch, downwards: " + down.message);
+  count_trace("turned_down", down);
   skip_start = turned_->rows() > 0;
   const ContactBranchTrace up = trace_contact_branch(*model_, *proxy_, turned_start_, phi0,
                                                      no_direction, 1.0, pins, o, on_sample,
                                                      on_special);
   say("# turned branch, upwards: " + up.message);
+  count_trace("turned_up", up);
   t.down = {down.reached_bound, down.message};
   t.up = {up.reached_bound, up.message};
   t.top = recorded_top(top_turned_);
@@ -863,6 +876,8 @@ void EconeContactRun::check_hard_contact_points() {
         say("#   taken from stages.json");
       } else {
         p.check = check_hard_contact(scene_, *model_, *proxy_, *state);
+        ++cost_.hard_contact_checks;
+        cost_.hard_contact_seconds += p.check.seconds;
       }
       write_file_atomically(dir_ + "/" + p.file, hard_contact_check_json(p.check));
       std::ostringstream line;
@@ -1027,6 +1042,12 @@ void EconeContactRun::wind_up() {
     }
     record_sample("wound", *wound_, p.sample);
     const ContactStepWork& k = p.work;
+    EconeWindingWork& spent = cost_.winding ? *cost_.winding : cost_.winding.emplace();
+    ++spent.steps;
+    spent.minimisations += k.tries;
+    spent.newton_iterations += k.newton_iterations;
+    spent.factorizations += k.factorizations;
+    spent.eigen_solves += k.eigen_solves;
     say("#   its cost: " + std::to_string(k.tries) + " minimisations (" +
         (p.from_prediction          ? "from the prediction"
          : k.prediction_discarded ? "prediction discarded"
@@ -1152,7 +1173,9 @@ EconeContactResults EconeContactRun::run() {
   if (existing_ != ExistingOutput::Resume) fs::remove(fs::path(dir_) / "results.json");
   write_file_atomically(dir_ + "/scene.json", scene_to_json(scene_));
   trace_cone();
-  fs::remove(fs::path(dir_) / "results.json");  // stale once the branches are traced again
+  // Stale once the branches are traced again; contact_cost.json is this run's, written at its end.
+  fs::remove(fs::path(dir_) / "results.json");
+  fs::remove(fs::path(dir_) / "contact_cost.json");
   set_up_contact();
   fs::remove_all(fs::path(dir_) / "orientation");  // stale once the cone is traced again
   check_orientation();
@@ -1181,6 +1204,20 @@ EconeContactResults EconeContactRun::run() {
   r.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   write_file_atomically(dir_ + "/results.json", econe_contact_results_json(r));
+  cost_.wall_seconds = r.wall_seconds;
+  if (cost_.winding && results_.wound) cost_.winding->seconds = results_.wound->seconds;
+  write_file_atomically(dir_ + "/contact_cost.json", econe_contact_cost_json(cost_));
+  int steps = 0, factorizations = 0, indices = 0;
+  for (const EconeTraceWork& w : cost_.traces) {
+    steps += w.steps;
+    factorizations += w.cost.continuation.factorizations;
+    indices += w.cost.continuation.stability_evaluations;
+  }
+  if (steps > 0)
+    say("# the traces with contact: " + std::to_string(steps) + " steps, " +
+        std::to_string(factorizations) + " factorisations (" +
+        fixed(static_cast<double>(factorizations) / steps, 2) + " per step), " +
+        std::to_string(indices) + " stability indices; wrote " + dir_ + "/contact_cost.json");
   const auto show = [](const std::optional<double>& v) {
     return v ? fixed(*v, 6) : std::string("none");
   };

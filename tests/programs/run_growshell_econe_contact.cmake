@@ -340,6 +340,40 @@ if(NOT three_mode EQUAL 3 OR NOT off EQUAL 0 OR NOT three_highest_phi GREATER_EQ
                       "0.03377), to ${three_highest_phi}, at least "
                       "${three_lowest_energy_above_two_fold} above the two-fold cone:\n${three}")
 endif()
+# contact_cost.json: the five traces with contact, each with its steps and factorisations,
+# their sums, the hard-contact checks made and the winding's steps; the per-step ratios are
+# the counts over the steps.
+set(check_cost [=[
+import json, sys
+cost = json.load(open(sys.argv[1] + "/contact_cost.json"))
+expected_traces = sys.argv[2].split(",") if sys.argv[2] else []
+names = [t["trace"] for t in cost["traces"]]
+if names != expected_traces:
+    sys.exit(f"contact_cost.json traces {names}, not {expected_traces}")
+for t in cost["traces"]:
+    if not (t["steps"] > 0 and t["factorizations"] >= t["steps"]
+            and t["factorizations_per_step"] == t["factorizations"] / t["steps"]):
+        sys.exit(f"trace {t}")
+total = cost["all_traces"]
+for key in ("steps", "factorizations", "stability_evaluations", "segments"):
+    if total[key] != sum(t[key] for t in cost["traces"]):
+        sys.exit(f"all_traces {key} {total[key]} is not the traces' sum")
+if cost["hard_contact_checks"] != int(sys.argv[3]):
+    sys.exit(f"{cost['hard_contact_checks']} hard-contact checks made, not {sys.argv[3]}")
+winding = cost["winding"]
+if int(sys.argv[4]) == 0:
+    if winding is not None:
+        sys.exit(f"winding work {winding} where no winding step was taken")
+elif winding["steps"] != int(sys.argv[4]) or winding["factorizations"] < winding["steps"]:
+    sys.exit(f"winding {winding}, not {sys.argv[4]} steps")
+]=])
+string(JSON wound_steps GET "${wound}" steps)
+execute_process(COMMAND /usr/bin/python3 -c "${check_cost}" "${OUT}/run"
+                        "symmetric,skewed_down,skewed_up,turned_down,turned_up" 2 ${wound_steps}
+                RESULT_VARIABLE cost_bad ERROR_VARIABLE cost_why)
+if(NOT cost_bad EQUAL 0)
+  message(FATAL_ERROR "contact_cost.json of the first run: ${cost_why}")
+endif()
 # Resuming the finished study (issue #17): the cone and the n-fold cone are resumed from their
 # last states, steps 3-7 (the branches with contact, the turned cone, the hard-constraint
 # checks) are taken from DIR/stages.json instead of being traced again, and the winding from
@@ -377,3 +411,9 @@ foreach(branch symmetric skewed turned wound)
     message(FATAL_ERROR "the resumed study changed ${branch}/branch.csv")
   endif()
 endforeach()
+# The resumed run's contact_cost.json is its own: no trace, no check, no winding step.
+execute_process(COMMAND /usr/bin/python3 -c "${check_cost}" "${OUT}/run" "" 0 0
+                RESULT_VARIABLE cost_bad ERROR_VARIABLE cost_why)
+if(NOT cost_bad EQUAL 0)
+  message(FATAL_ERROR "contact_cost.json of the resumed run: ${cost_why}")
+endif()
