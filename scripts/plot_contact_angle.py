@@ -16,14 +16,14 @@ energy) are marked with their phi_e. Stable samples (n_negative = 0) solid, unst
 Prints, per branch, f at its highest sample (results.json's energy_ratio_f) and the hard
 constraints' gamma at each checked point. Needs matplotlib (Debian: python3-matplotlib).
 """
-import json
 import math
 import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from plot_study import stability_runs  # noqa: E402  (runs of equal stability, shared ends)
-from econe_records import read_rows  # noqa: E402
+from plot_study import pyplot, stability_runs  # noqa: E402
+from econe_records import (econe_study, mark_special_points, read_rows, save_figure,  # noqa: E402
+                           study_label)
 
 COLUMNS = ["phi_e", "E_stretch", "E_bend", "gamma", "n_negative"]
 COLOURS = {"symmetric": "tab:blue", "skewed": "tab:red", "turned": "tab:orange",
@@ -57,17 +57,7 @@ def branch_rows(directory, results):
 
 
 def main():
-    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
-        sys.exit(__doc__)
-    directory = pathlib.Path(sys.argv[1])
-    if not directory.is_dir():
-        fail(f"{directory} is not a directory")
-    results_path = directory / "results.json"
-    if not results_path.is_file():
-        fail(f"{directory} has no results.json (not a finished econe_contact study?)")
-    results = json.loads(results_path.read_text())
-    if results.get("study") != "econe_contact":
-        fail(f"{results_path} is not an econe_contact study's (study: {results.get('study')})")
+    directory, results = econe_study(__doc__, fail)
     branches = branch_rows(directory, results)
     if not branches:
         fail(f"{directory} has no samples with contact (symmetric/branch.csv is empty)")
@@ -81,12 +71,7 @@ def main():
         points = "; ".join(f"{g:.4f} at {p:.4f}" for p, g in sorted(hard.get(key, [])))
         print(f"{key}: f = {ratio:.6g} at phi_e = {top_row['phi_e']:.6g}"
               + (f"; gamma (hard constraints) {points}" if points else ""))
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        fail("needs matplotlib (Debian: apt-get install python3-matplotlib)")
+    plt = pyplot(fail)
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True,
                                       gridspec_kw={"height_ratios": [3, 2]})
@@ -116,29 +101,8 @@ def main():
                  xytext=(3, 3), textcoords="offset points", fontsize=8, color="gray")
     top.plot([], [], "k-", label="stable")
     top.plot([], [], "k--", label="unstable")
-    bound = results.get("phi_crit_energy_criterion") == "lowest_sample"
-    against = results.get("phi_crit_energy_reference", "symmetric")
-    marks = [("phi_first_contact", "first contact", "=", "tab:green"),
-             ("phi_crit_stability", r"$\phi_e^{crit}$ (stability)", "=", "tab:purple"),
-             ("phi_crit_energy", r"$\phi_e^{crit}$ (energy vs " + against + ")",
-              r"$\leq$" if bound else "=", "black")]
-    for row, (key, label, relation, colour) in enumerate(marks):
-        value = results.get(key)
-        if not finite(value):
-            continue
-        for axis in (top, bottom):
-            axis.axvline(value, color=colour, linestyle=":", linewidth=1.2)
-        low, high = top.get_xlim()
-        right = value > 0.5 * (low + high)
-        top.annotate(f"{label} {relation} {value:.4f}", (value, 0.0),
-                     xycoords=("data", "axes fraction"),
-                     xytext=(-3 if right else 3, 4 + 12 * row), textcoords="offset points",
-                     ha="right" if right else "left", fontsize=8, color=colour)
-    mesh = results.get("mesh", {})
-    slope = mesh.get("size_slope")
-    size = f", size_slope {slope:g}" if slope is not None else ""
-    top.set_title(f"contact angle and energy ratio: h = {results.get('thickness'):g} m, "
-                  f"{mesh.get('family')} mesh{size}", fontsize=10)
+    mark_special_points(top, (top, bottom), results, at_top=False)
+    top.set_title(f"contact angle and energy ratio: {study_label(results)}", fontsize=10)
     top.set_ylabel(r"angle between the contact planes $\gamma$ (rad)")
     bottom.set_ylabel(r"energy ratio $f = E_s / E_b$")
     bottom.set_yscale("log")
@@ -148,10 +112,7 @@ def main():
     top.legend(loc="lower left", fontsize=8)
     bottom.legend(loc="best", fontsize=8)
     fig.tight_layout()
-    # Written whole, then renamed: a reader never sees half a figure.
-    temporary = directory / ".contact_angle.png.tmp"
-    fig.savefig(temporary, dpi=120, format="png")
-    temporary.replace(directory / "contact_angle.png")
+    save_figure(fig, directory, "contact_angle.png")
 
 
 if __name__ == "__main__":

@@ -15,14 +15,13 @@ shows, and the turned cone's lies below it (the n-fold cones, tens of per cent a
 on top only, their least excess over the two-fold cone in the legend). The special values of results.json (first contact, phi_e^crit by stability and by
 energy) are marked with their phi_e. Needs matplotlib (Debian: python3-matplotlib).
 """
-import json
-import math
 import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from plot_study import stability_runs  # noqa: E402  (runs of equal stability, shared ends)
-from econe_records import read_rows, total_energy, value_at  # noqa: E402
+from plot_study import pyplot, stability_runs  # noqa: E402
+from econe_records import (econe_study, mark_special_points, read_rows, save_figure,  # noqa: E402
+                           study_label, total_energy, value_at)
 
 
 def fail(message):
@@ -30,17 +29,7 @@ def fail(message):
 
 
 def main():
-    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
-        sys.exit(__doc__)
-    directory = pathlib.Path(sys.argv[1])
-    if not directory.is_dir():
-        fail(f"{directory} is not a directory")
-    results_path = directory / "results.json"
-    if not results_path.is_file():
-        fail(f"{directory} has no results.json (not a finished econe_contact study?)")
-    results = json.loads(results_path.read_text())
-    if results.get("study") != "econe_contact":
-        fail(f"{results_path} is not an econe_contact study's (study: {results.get('study')})")
+    directory, results = econe_study(__doc__, fail)
     base = ["phi_e", "E_stretch", "E_bend", "Eb_hat", "n_negative"]
     cone = [r for r in read_rows(directory / "cone" / "branch.csv", base, fail)
             if r["phi_e"] >= (results.get("phi_branch") or 0.0)]
@@ -62,12 +51,7 @@ def main():
     # The skewed branch is written as traced: down from the relaxed state, then up from it.
     skewed.sort(key=lambda r: r["phi_e"])
     turned.sort(key=lambda r: r["phi_e"])
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        fail("needs matplotlib (Debian: apt-get install python3-matplotlib)")
+    plt = pyplot(fail)
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True,
                                       gridspec_kw={"height_ratios": [3, 2]})
@@ -108,32 +92,10 @@ def main():
                      rotation=90)
     top.plot([], [], "k-", label="stable")
     top.plot([], [], "k--", label="unstable")
-    # (key, label, relation, colour): a phi_e^crit by energy met only at the skewed trace's
-    # lowest sample is an upper bound.
-    bound = results.get("phi_crit_energy_criterion") == "lowest_sample"
-    against = results.get("phi_crit_energy_reference", "symmetric")
-    marks = [("phi_first_contact", "first contact", "=", "tab:green"),
-             ("phi_crit_stability", r"$\phi_e^{crit}$ (stability)", "=", "tab:purple"),
-             ("phi_crit_energy", r"$\phi_e^{crit}$ (energy vs " + against + ")",
-              r"$\leq$" if bound else "=", "black")]
-    for row, (key, label, relation, color) in enumerate(marks):
-        value = results.get(key)
-        if isinstance(value, (int, float)) and math.isfinite(value):
-            for axis in (top, bottom):
-                axis.axvline(value, color=color, linestyle=":", linewidth=1.2)
-            # Labels of marks in the right half end at their line, so that they stay inside.
-            low, high = top.get_xlim()
-            right = value > 0.5 * (low + high)
-            top.annotate(f"{label} {relation} {value:.4f}", (value, 1.0),
-                         xycoords=("data", "axes fraction"),
-                         xytext=(-3 if right else 3, -12 - 12 * row), textcoords="offset points",
-                         ha="right" if right else "left", fontsize=8, color=color)
-    mesh = results.get("mesh", {})
-    slope = mesh.get("size_slope")
-    size = f", size_slope {slope:g}" if slope is not None else ""
-    top.set_title(f"e-cone through contact: h = {results.get('thickness'):g} m, "
-                  f"{mesh.get('family')} mesh{size}, exclusion radius "
-                  f"{results.get('exclusion_radius', float('nan')) / results.get('thickness', 1):.3g} h", fontsize=10)
+    mark_special_points(top, (top, bottom), results, at_top=True)
+    radius = results.get("exclusion_radius", float("nan")) / results.get("thickness", 1)
+    top.set_title(f"e-cone through contact: {study_label(results)}, exclusion radius "
+                  f"{radius:.3g} h", fontsize=10)
     top.set_ylabel(r"normalised bending energy $\hat{E}_b$ (1/m$^2$)")
     bottom.set_ylabel(r"$(E - E_{sym}) / E_{sym}$, $E = E_s + E_b + E_{penalty}$")
     bottom.set_xlabel(r"excess angle $\phi_e$ (rad)")
@@ -142,10 +104,7 @@ def main():
         axis.grid(True, alpha=0.3)
     top.legend(loc="best", fontsize=8)
     fig.tight_layout()
-    # Written whole, then renamed: a reader never sees half a figure.
-    temporary = directory / ".econe_contact.png.tmp"
-    fig.savefig(temporary, dpi=120, format="png")
-    temporary.replace(directory / "econe_contact.png")
+    save_figure(fig, directory, "econe_contact.png")
 
 
 if __name__ == "__main__":

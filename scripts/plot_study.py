@@ -107,6 +107,18 @@ def stability_runs(negative):
     return runs
 
 
+def pyplot(fail):
+    """matplotlib.pyplot with the Agg backend (files only), or fail(message) naming the Debian
+    package that provides it."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        fail("needs matplotlib (Debian: apt-get install python3-matplotlib)")
+    return plt
+
+
 def main():
     if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
         sys.exit(__doc__)
@@ -115,12 +127,7 @@ def main():
         fail(f"{directory} is not a directory")
     phi, eb, negative = read_branch(directory)
     events = read_events(directory)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        fail("needs matplotlib (Debian: apt-get install python3-matplotlib)")
+    plt = pyplot(fail)
 
     fig, ax = plt.subplots(figsize=(8, 5))
     labelled = set()

@@ -7,33 +7,21 @@ import json
 import os
 import tempfile
 
-from script_checks import Checks, run_script
-
-HEADER = ("phi_e,E_stretch,E_bend,E_penalty,Eb_hat,area,min_distance,active_pairs,contact_force,"
-          "gamma,n_negative,dE_dphi,arclength,corrector_iterations,s4_defect,chord_up,chord_down")
-
+from script_checks import (Checks, check_refuses_other_directories, run_script,
+                           write_contact_branch)
 
 def branch(path, rows):
     """rows: (phi, energy, s4_defect, gamma, negative); the energy split over E_s, E_b and P."""
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write(HEADER + "\n")
-        for phi, energy, defect, gamma, negative in rows:
-            f.write(f"{phi},{energy / 2},{energy / 4},{energy / 4},3,3.2,0.05,0,0,{gamma},"
-                    f"{negative},0,0,1,{defect},0.2,0.2\n")
+    write_contact_branch(path, [
+        {"phi_e": phi, "E_stretch": energy / 2, "E_bend": energy / 4, "E_penalty": energy / 4,
+         "Eb_hat": 3, "gamma": gamma, "n_negative": negative, "s4_defect": defect}
+        for phi, energy, defect, gamma, negative in rows])
 
 
 def main():
     check = Checks()
     with tempfile.TemporaryDirectory() as d:
-        missing = run_script("econe_branches_at.py", d, "6")
-        check(missing.returncode == 2 and "results.json" in missing.stderr,
-              f"a directory without results.json is refused by name: {missing.stderr!r}")
-        with open(os.path.join(d, "results.json"), "w") as f:
-            json.dump({"study": "cone_branch"}, f)
-        other = run_script("econe_branches_at.py", d, "6")
-        check(other.returncode == 2 and "not an econe_contact" in other.stderr,
-              f"another study's directory is refused: {other.stderr!r}")
+        check_refuses_other_directories(check, "econe_branches_at.py", d, "6", status=2)
         with open(os.path.join(d, "results.json"), "w") as f:
             json.dump({"study": "econe_contact"}, f)
         no_branch = run_script("econe_branches_at.py", d, "6")

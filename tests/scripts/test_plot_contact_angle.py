@@ -7,34 +7,21 @@ import json
 import os
 import tempfile
 
-from script_checks import Checks, run_script
-
-HEADER = ("phi_e,E_stretch,E_bend,E_penalty,Eb_hat,area,min_distance,active_pairs,contact_force,"
-          "gamma,n_negative,dE_dphi,arclength,corrector_iterations,s4_defect,chord_up,chord_down")
-
+from script_checks import (Checks, check_figure_drawn, check_refuses_other_directories,
+                           run_script, write_contact_branch)
 
 def branch(path, rows):
     """rows: (phi_e, E_stretch, E_bend, gamma, n_negative)."""
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write(HEADER + "\n")
-        for phi, stretch, bend, gamma, negative in rows:
-            f.write(f"{phi},{stretch},{bend},0,3.0,3.2,0.05,4,0.1,{gamma},{negative},"
-                    "0,0,1,0.01,0.2,0.2\n")
+    write_contact_branch(path, [
+        {"phi_e": phi, "E_stretch": stretch, "E_bend": bend, "gamma": gamma,
+         "n_negative": negative, "active_pairs": 4, "contact_force": 0.1}
+        for phi, stretch, bend, gamma, negative in rows])
 
 
 def main():
     check = Checks()
     with tempfile.TemporaryDirectory() as d:
-        refused = run_script("plot_contact_angle.py", d)
-        check(refused.returncode != 0 and "results.json" in refused.stderr,
-              f"a directory without results.json is refused by name: {refused.stderr!r}")
-        with open(os.path.join(d, "results.json"), "w") as f:
-            json.dump({"study": "cone_branch"}, f)
-        wrong = run_script("plot_contact_angle.py", d)
-        check(wrong.returncode != 0 and "not an econe_contact" in wrong.stderr,
-              f"another study's results.json is refused: {wrong.stderr!r}")
-
+        check_refuses_other_directories(check, "plot_contact_angle.py", d)
         results = {"study": "econe_contact", "thickness": 0.005,
                    "mesh": {"family": "rings", "size_slope": 0.1},
                    "phi_first_contact": 6.57, "phi_crit_stability": 7.067,
@@ -65,15 +52,7 @@ def main():
               "1.5200 at 7.2000" in lines,
               f"the skewed branch's f at its top (not its last row) and its converged hard "
               f"gammas by phi_e: {drawn.stdout!r}")
-        figure = os.path.join(d, "contact_angle.png")
-        if "needs matplotlib" in drawn.stderr:
-            print("matplotlib missing: the figure itself is not checked")
-        else:
-            check(drawn.returncode == 0, f"the figure is drawn: {drawn.stderr!r}")
-            check(os.path.isfile(figure) and os.path.getsize(figure) > 10000,
-                  "contact_angle.png is written")
-            check(not os.path.exists(os.path.join(d, ".contact_angle.png.tmp")),
-                  "no temporary is left")
+        check_figure_drawn(check, drawn, d, "contact_angle.png")
         # A branch record without the gamma column is refused by name.
         with open(os.path.join(d, "skewed", "branch.csv"), "w") as f:
             f.write("phi_e,E_stretch,E_bend,n_negative\n7,1,2,0\n")

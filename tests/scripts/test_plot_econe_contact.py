@@ -6,7 +6,8 @@ import json
 import os
 import tempfile
 
-from script_checks import Checks, run_script
+from script_checks import (Checks, check_figure_drawn, check_refuses_other_directories,
+                           run_script)
 
 HEADER = ("phi_e,E_stretch,E_bend,E_penalty,Eb_hat,area,min_distance,active_pairs,contact_force,"
           "gamma,n_negative,dE_dphi,arclength,corrector_iterations,s4_defect,chord_up,chord_down")
@@ -39,15 +40,7 @@ def redraw(check, d, results, what):
 def main():
     check = Checks()
     with tempfile.TemporaryDirectory() as d:
-        refused = run_script("plot_econe_contact.py", d)
-        check(refused.returncode != 0 and "results.json" in refused.stderr,
-              f"a directory without results.json is refused by name: {refused.stderr!r}")
-        with open(os.path.join(d, "results.json"), "w") as f:
-            json.dump({"study": "cone_branch"}, f)
-        wrong = run_script("plot_econe_contact.py", d)
-        check(wrong.returncode != 0 and "not an econe_contact" in wrong.stderr,
-              f"another study's results.json is refused: {wrong.stderr!r}")
-
+        check_refuses_other_directories(check, "plot_econe_contact.py", d)
         results = {"study": "econe_contact", "thickness": 0.04, "exclusion_radius": 0.32,
                    "mesh": {"family": "rings", "size_slope": 0.1}, "phi_branch": 0.017,
                    "phi_first_contact": 6.55, "phi_crit_stability": 7.03,
@@ -62,15 +55,7 @@ def main():
         branch(os.path.join(d, "skewed", "branch.csv"),
                [(7.2, 0.733, 0), (6.4, 0.738, 0), (5.8, 0.75, 1), (7.3, 0.732, 0)])
         drawn = run_script("plot_econe_contact.py", d)
-        figure = os.path.join(d, "econe_contact.png")
-        if "needs matplotlib" in drawn.stderr:
-            print("matplotlib missing: the figure itself is not checked")
-        else:
-            check(drawn.returncode == 0, f"the figure is drawn: {drawn.stderr!r}")
-            check(os.path.isfile(figure) and os.path.getsize(figure) > 10000,
-                  "econe_contact.png is written")
-            check(not os.path.exists(os.path.join(d, ".econe_contact.png.tmp")),
-                  "no temporary is left")
+        if check_figure_drawn(check, drawn, d, "econe_contact.png"):
             # With the turned branch (written as traced: down, then up) and phi_crit_energy
             # measured against it.
             branch(os.path.join(d, "turned", "branch.csv"),
