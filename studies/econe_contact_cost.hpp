@@ -27,9 +27,9 @@ struct EconeTraceWork {
 /// The winding's work (study.wind_to), summed over this run's steps.
 struct EconeWindingWork {
   int steps = 0;
-  int minimisations = 0;      ///< ContactStepWork::tries
+  int minimisations = 0;  ///< ContactStepWork::tries
   int newton_iterations = 0;
-  int factorizations = 0;     ///< Newton's plus one per stability test
+  int factorizations = 0;  ///< Newton's plus one per stability test
   int eigen_solves = 0;
   double seconds = 0.0;
 };
@@ -41,7 +41,7 @@ struct EconeContactCost {
   int hard_contact_checks = 0;  ///< Ipopt solves of stage 6 made by this run
   double hard_contact_seconds = 0.0;
   std::optional<EconeWindingWork> winding;  ///< if this run took winding steps
-  double wall_seconds = 0.0;  ///< of the whole run, the cone's stage included
+  double wall_seconds = 0.0;                ///< of the whole run, the cone's stage included
 };
 
 /// contact_cost.json's text: {"traces": [{trace, steps, failed_steps, segments,

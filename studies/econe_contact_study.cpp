@@ -25,7 +25,6 @@
 #include "solvers/contact/hard_contact_solve_options.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
-#include "studies/hard_contact_check.hpp"
 #include "studies/branch_record.hpp"
 #include "studies/cone_branch_study.hpp"
 #include "studies/cone_mirror_subspace.hpp"
@@ -33,6 +32,7 @@
 #include "studies/econe_stage_record.hpp"
 #include "studies/econe_winding_options.hpp"
 #include "studies/ground_state_exchange.hpp"
+#include "studies/hard_contact_check.hpp"
 #include "studies/pattern_orientation_check.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/scene_arclength_corrector.hpp"
@@ -851,18 +851,19 @@ void EconeContactRun::measure_turned(EconeTurnedBranch t) {
 }
 
 /// Stage 6 (study.hard_contact_at): the saved state nearest each requested phi_e of each branch
-/// of study.hard_contact_branches (the turned and the symmetric one by default), solved again under Ipopt's hard constraints and compared with the
-/// penalty's (studies/hard_contact_check.hpp); each check to BRANCH/hard_contact_phiP.json.
+/// of study.hard_contact_branches (the turned and the symmetric one by default), solved again
+/// under Ipopt's hard constraints and compared with the penalty's
+/// (studies/hard_contact_check.hpp); each check to BRANCH/hard_contact_phiP.json.
 void EconeContactRun::check_hard_contact_points() {
   for (const double at : scene_.study.hard_contact_at) {
     for (const std::string& branch : scene_.study.hard_contact_branches) {
       const std::string branch_dir = dir_ + "/" + branch;
-      if (!fs::exists(fs::path(branch_dir) / "states")) continue;  // no turned branch traced
+      if (!fs::exists(fs::path(branch_dir) / "states")) continue;  // the branch was not traced
       const std::optional<BranchSample> state =
           nearest_saved_state(branch_dir, at, model_->dimension(), fingerprint_);
       if (!state) continue;
-      say("# stage 6: the " + branch + " branch at phi_e = " +
-          fixed(state->parameter, 6) + " under Ipopt's hard contact constraints");
+      say("# stage 6: the " + branch + " branch at phi_e = " + fixed(state->parameter, 6) +
+          " under Ipopt's hard contact constraints");
       EconeHardContactPoint p;
       p.branch = branch;
       p.at = at;
@@ -1151,11 +1152,10 @@ void EconeContactRun::wind_up() {
 /// energy_ratio_f).
 void EconeContactRun::measure_energy_ratios() {
   results_.energy_ratio_f.clear();
-  const std::pair<const char*, const BranchRecord*> branches[] = {
-      {"symmetric", symmetric_.get()},
-      {"skewed", skewed_.get()},
-      {"turned", turned_.get()},
-      {"wound", wound_.get()}};
+  const std::pair<const char*, const BranchRecord*> branches[] = {{"symmetric", symmetric_.get()},
+                                                                  {"skewed", skewed_.get()},
+                                                                  {"turned", turned_.get()},
+                                                                  {"wound", wound_.get()}};
   for (const auto& [name, record] : branches) {
     if (!record || record->rows() == 0) continue;
     std::size_t top = 0;

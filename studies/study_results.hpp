@@ -297,8 +297,8 @@ struct EconeContactResults {
 /// target, reached, highest_phi, steps, failed_steps, jumps, shapes [{phi_e, shell, contact}],
 /// end, seconds} or null), energy_ratio_f [{branch, phi_e, f}], warnings [strings],
 /// completed, end, cone_csv, symmetric_csv, skewed_csv, turned_csv (null without the turned
-/// branch), wound_csv (null without the winding), events (each branch's events.json), wall_seconds. Unset and non-finite values are
-/// null.
+/// branch), wound_csv (null without the winding), events (each branch's events.json), wall_seconds.
+/// Unset and non-finite values are null.
 std::string econe_contact_results_json(const EconeContactResults& results);
 
 }  // namespace growshell

@@ -714,8 +714,9 @@ void validate_scene(const Scene& scene) {
         fail(key + " = " + format(st.hard_contact_at[i]) + " is listed twice");
   }
   if (st.hard_contact_branches.empty())
-    fail("study.hard_contact_branches must list at least one of \"turned\", \"symmetric\" and "
-         "\"skewed\"");
+    fail(
+        "study.hard_contact_branches must list at least one of \"turned\", \"symmetric\" and "
+        "\"skewed\"");
   for (std::size_t i = 0; i < st.hard_contact_branches.size(); ++i) {
     const std::string key = "study.hard_contact_branches[" + std::to_string(i) + "]";
     const std::string& b = st.hard_contact_branches[i];

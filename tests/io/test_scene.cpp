@@ -934,16 +934,19 @@ TEST(Scene, HardContactBranchesNameTracedBranchesOnceEach) {
             (std::vector<std::string>{"turned", "symmetric"}));
   const Scene s = parse_scene(
       R"({"study": {"kind": "econe_contact", "hard_contact_at": [7.1],
-                    "hard_contact_branches": ["skewed", "turned"]}})", "test");
+                    "hard_contact_branches": ["skewed", "turned"]}})",
+      "test");
   EXPECT_EQ(s.study.hard_contact_branches, (std::vector<std::string>{"skewed", "turned"}));
   EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.hard_contact_branches,
             s.study.hard_contact_branches);
   using test_support::error_of;
   const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
-  EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact",
+  EXPECT_NE(
+      error_of(parse(R"({"study": {"kind": "econe_contact",
                                          "hard_contact_branches": ["turned", "wound"]}})"))
-                .find(R"(study.hard_contact_branches[1] = "wound" must be "turned", "symmetric" or "skewed")"),
-            std::string::npos);
+          .find(
+              R"(study.hard_contact_branches[1] = "wound" must be "turned", "symmetric" or "skewed")"),
+      std::string::npos);
   EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact",
                                          "hard_contact_branches": ["skewed", "skewed"]}})"))
                 .find(R"(study.hard_contact_branches[1] = "skewed" is listed twice)"),
