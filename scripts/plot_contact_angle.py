@@ -109,7 +109,7 @@ def main():
     bottom.set_xlabel(r"excess angle $\phi_e$ (rad)")
     for axis in (top, bottom):
         axis.grid(True, alpha=0.3)
-    top.legend(loc="lower left", fontsize=8)
+    top.legend(loc="center left", fontsize=8)
     bottom.legend(loc="best", fontsize=8)
     fig.tight_layout()
     save_figure(fig, directory, "contact_angle.png")
