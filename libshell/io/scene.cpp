@@ -45,6 +45,15 @@ std::string format(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
+/// Fails with "KEY = SHOWN is listed twice" if entry i of a list equals an earlier one: every
+/// list key of a scene names each value once.
+template <class T>
+void require_not_listed_before(const std::vector<T>& values, std::size_t i, const std::string& key,
+                               const std::string& shown) {
+  for (std::size_t j = 0; j < i; ++j)
+    if (values[j] == values[i]) fail(key + " = " + shown + " is listed twice");
+}
+
 // ---- Names of the enumerations -----------------------------------------------------------
 
 template <class Enum>
@@ -531,9 +540,7 @@ void validate_winding(const Scene& scene) {
     if (st.compare_modes[i] < 3)
       fail(key + " = " + std::to_string(st.compare_modes[i]) +
            " must be at least 3: the two-fold cone is the study's own");
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.compare_modes[j] == st.compare_modes[i])
-        fail(key + " = " + std::to_string(st.compare_modes[i]) + " is listed twice");
+    require_not_listed_before(st.compare_modes, i, key, std::to_string(st.compare_modes[i]));
   }
   if ((st.wind_to || !st.wind_shapes_at.empty()) && !econe)
     fail("study.wind_to and study.wind_shapes_at are read only by the econe_contact study (this "
@@ -551,8 +558,7 @@ void validate_winding(const Scene& scene) {
     if (!(at > top && at <= *st.wind_to))
       fail(key + " = " + format(at) + " must lie in (continuation.phi_max, study.wind_to] = (" +
            format(top) + ", " + format(*st.wind_to) + "]");
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.wind_shapes_at[j] == at) fail(key + " = " + format(at) + " is listed twice");
+    require_not_listed_before(st.wind_shapes_at, i, key, format(at));
   }
 }
 
@@ -576,9 +582,7 @@ void validate_series(const SceneStudy& st) {
   for (std::size_t i = 0; i < st.series_values.size(); ++i) {
     const std::string key = "study.series_values[" + std::to_string(i) + "]";
     require_finite(st.series_values[i], key);
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.series_values[j] == st.series_values[i])
-        fail(key + " = " + format(st.series_values[i]) + " is listed twice");
+    require_not_listed_before(st.series_values, i, key, format(st.series_values[i]));
   }
   if (st.series_of != StudyKind::ConeBranch && st.series_of != StudyKind::EconeContact)
     fail("study.series_of = \"" + enum_name(kStudyKindNames, st.series_of) +
@@ -588,9 +592,7 @@ void validate_series(const SceneStudy& st) {
   for (std::size_t i = 0; i < st.series_report.size(); ++i) {
     const std::string key = "study.series_report[" + std::to_string(i) + "]";
     if (st.series_report[i].empty()) fail(key + " is empty");
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.series_report[j] == st.series_report[i])
-        fail(key + " = \"" + st.series_report[i] + "\" is listed twice");
+    require_not_listed_before(st.series_report, i, key, "\"" + st.series_report[i] + "\"");
   }
 }
 
@@ -687,8 +689,7 @@ void validate_scene(const Scene& scene) {
     const double turn = st.orientation_check_turns[i];
     if (!(std::isfinite(turn) && turn > -90.0 && turn < 90.0 && turn != 0.0))
       fail(key + " = " + format(turn) + " must be a turn in degrees in (-90, 90) other than 0");
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.orientation_check_turns[j] == turn) fail(key + " = " + format(turn) + " is listed twice");
+    require_not_listed_before(st.orientation_check_turns, i, key, format(turn));
   }
   if (st.kind == StudyKind::ThicknessSeries) {
     if (st.thicknesses.size() < 2)
@@ -697,9 +698,7 @@ void validate_scene(const Scene& scene) {
     for (std::size_t i = 0; i < st.thicknesses.size(); ++i) {
       const std::string key = "study.thicknesses[" + std::to_string(i) + "]";
       require_positive(st.thicknesses[i], key);
-      for (std::size_t j = 0; j < i; ++j)
-        if (st.thicknesses[j] == st.thicknesses[i])
-          fail(key + " = " + format(st.thicknesses[i]) + " is listed twice");
+      require_not_listed_before(st.thicknesses, i, key, format(st.thicknesses[i]));
     }
   } else if (!st.thicknesses.empty()) {
     fail("study.thicknesses is read only by study.kind = \"thickness_series\"; the study \"" +
@@ -709,9 +708,7 @@ void validate_scene(const Scene& scene) {
   for (std::size_t i = 0; i < st.hard_contact_at.size(); ++i) {
     const std::string key = "study.hard_contact_at[" + std::to_string(i) + "]";
     require_positive(st.hard_contact_at[i], key);
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.hard_contact_at[j] == st.hard_contact_at[i])
-        fail(key + " = " + format(st.hard_contact_at[i]) + " is listed twice");
+    require_not_listed_before(st.hard_contact_at, i, key, format(st.hard_contact_at[i]));
   }
   if (st.hard_contact_branches.empty())
     fail(
@@ -722,8 +719,7 @@ void validate_scene(const Scene& scene) {
     const std::string& b = st.hard_contact_branches[i];
     if (b != "turned" && b != "symmetric" && b != "skewed")
       fail(key + " = \"" + b + "\" must be \"turned\", \"symmetric\" or \"skewed\"");
-    for (std::size_t j = 0; j < i; ++j)
-      if (st.hard_contact_branches[j] == b) fail(key + " = \"" + b + "\" is listed twice");
+    require_not_listed_before(st.hard_contact_branches, i, key, "\"" + b + "\"");
   }
   if (!st.hard_contact_at.empty() && st.kind != StudyKind::EconeContact &&
       !(st.kind == StudyKind::Series && st.series_of == StudyKind::EconeContact))
