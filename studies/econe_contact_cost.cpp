@@ -16,12 +16,16 @@ Json per_step(int count, int steps) {
 
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
-/// The fields of one trace's work (or of their sum), in the documented order.
-Json trace_fields(int steps, int failed_steps, const ContactBranchCost& c) {
+/// The fields of one trace's work, in the documented order, after its name where `named` (the
+/// sum of the traces has none).
+Json trace_fields(const EconeTraceWork& w, bool named) {
+  const ContactBranchCost& c = w.cost;
   const TraceCost& t = c.continuation;
+  const int steps = w.steps;
   Json j;
+  if (named) j["trace"] = w.trace;
   j["steps"] = steps;
-  j["failed_steps"] = failed_steps;
+  j["failed_steps"] = w.failed_steps;
   j["segments"] = c.segments;
   j["linearizations"] = t.linearizations;
   j["factorizations"] = t.factorizations;
@@ -42,31 +46,23 @@ Json trace_fields(int steps, int failed_steps, const ContactBranchCost& c) {
 
 }  // namespace
 
+EconeTraceWork all_traces(const EconeContactCost& cost) {
+  EconeTraceWork sum;
+  sum.trace = "all";
+  for (const EconeTraceWork& w : cost.traces) {
+    sum.steps += w.steps;
+    sum.failed_steps += w.failed_steps;
+    sum.cost += w.cost;
+  }
+  return sum;
+}
+
 std::string econe_contact_cost_json(const EconeContactCost& cost) {
   Json j;
   Json traces = Json::array();
-  ContactBranchCost sum;
-  int steps = 0, failed = 0;
-  for (const EconeTraceWork& w : cost.traces) {
-    // The name first, then the fields (held here: a range-for over a temporary's items()
-    // would outlive it).
-    const Json fields = trace_fields(w.steps, w.failed_steps, w.cost);
-    Json t;
-    t["trace"] = w.trace;
-    for (const auto& [key, value] : fields.items()) t[key] = value;
-    traces.push_back(std::move(t));
-    sum.continuation += w.cost.continuation;
-    sum.pair_search_seconds += w.cost.pair_search_seconds;
-    sum.sample_seconds += w.cost.sample_seconds;
-    sum.segments += w.cost.segments;
-    sum.rebuilds_after_violation += w.cost.rebuilds_after_violation;
-    sum.safeguarded_starts += w.cost.safeguarded_starts;
-    sum.relaxed_starts += w.cost.relaxed_starts;
-    steps += w.steps;
-    failed += w.failed_steps;
-  }
+  for (const EconeTraceWork& w : cost.traces) traces.push_back(trace_fields(w, true));
   j["traces"] = std::move(traces);
-  j["all_traces"] = trace_fields(steps, failed, sum);
+  j["all_traces"] = trace_fields(all_traces(cost), false);
   j["skewed_search_seconds"] =
       cost.skewed_search_seconds ? finite_or_null(*cost.skewed_search_seconds) : Json(nullptr);
   j["hard_contact_checks"] = cost.hard_contact_checks;

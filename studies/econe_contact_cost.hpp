@@ -44,6 +44,9 @@ struct EconeContactCost {
   double wall_seconds = 0.0;                ///< of the whole run, the cone's stage included
 };
 
+/// The traces' work summed: steps, failed steps and every cost (trace "all").
+EconeTraceWork all_traces(const EconeContactCost& cost);
+
 /// contact_cost.json's text: {"traces": [{trace, steps, failed_steps, segments,
 /// linearizations, factorizations, factorizations_per_step, stability_evaluations,
 /// stability_evaluations_per_step, assembly_seconds, factorization_seconds, stability_seconds,

@@ -1207,17 +1207,15 @@ EconeContactResults EconeContactRun::run() {
   cost_.wall_seconds = r.wall_seconds;
   if (cost_.winding && results_.wound) cost_.winding->seconds = results_.wound->seconds;
   write_file_atomically(dir_ + "/contact_cost.json", econe_contact_cost_json(cost_));
-  int steps = 0, factorizations = 0, indices = 0;
-  for (const EconeTraceWork& w : cost_.traces) {
-    steps += w.steps;
-    factorizations += w.cost.continuation.factorizations;
-    indices += w.cost.continuation.stability_evaluations;
+  const EconeTraceWork spent = all_traces(cost_);
+  if (spent.steps > 0) {
+    const TraceCost& c = spent.cost.continuation;
+    say("# the traces with contact: " + std::to_string(spent.steps) + " steps, " +
+        std::to_string(c.factorizations) + " factorisations (" +
+        fixed(static_cast<double>(c.factorizations) / spent.steps, 2) + " per step), " +
+        std::to_string(c.stability_evaluations) + " stability indices; wrote " + dir_ +
+        "/contact_cost.json");
   }
-  if (steps > 0)
-    say("# the traces with contact: " + std::to_string(steps) + " steps, " +
-        std::to_string(factorizations) + " factorisations (" +
-        fixed(static_cast<double>(factorizations) / steps, 2) + " per step), " +
-        std::to_string(indices) + " stability indices; wrote " + dir_ + "/contact_cost.json");
   const auto show = [](const std::optional<double>& v) {
     return v ? fixed(*v, 6) : std::string("none");
   };

@@ -137,6 +137,19 @@ struct ContactBranchCost {
   int safeguarded_starts = 0;
   /// Segment starts relaxed by energy minimisation (start_relaxation) after that failed.
   int relaxed_starts = 0;
+
+  /// Adds the counts and times of another trace with contact (e.g. the other direction).
+  ContactBranchCost& operator+=(const ContactBranchCost& other) {
+    continuation += other.continuation;
+    pair_search_seconds += other.pair_search_seconds;
+    sample_seconds += other.sample_seconds;
+    segments += other.segments;
+    rebuilds_after_violation += other.rebuilds_after_violation;
+    repinnings += other.repinnings;
+    safeguarded_starts += other.safeguarded_starts;
+    relaxed_starts += other.relaxed_starts;
+    return *this;
+  }
 };
 
 /// Result of trace_contact_branch. `last` is always the last converged sample (the start if
