@@ -26,6 +26,7 @@ Json trace_fields(const EconeTraceWork& w, bool named) {
   if (named) j["trace"] = w.trace;
   j["steps"] = steps;
   j["failed_steps"] = w.failed_steps;
+  j["stalled_correctors"] = t.stalled_correctors;
   j["segments"] = c.segments;
   j["linearizations"] = t.linearizations;
   j["factorizations"] = t.factorizations;

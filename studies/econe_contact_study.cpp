@@ -23,6 +23,7 @@
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/contact/hard_contact_solve_options.hpp"
+#include "solvers/continuation/turning_back_event.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/branch_record.hpp"
@@ -260,6 +261,10 @@ void EconeContactRun::set_up_contact() {
   c.arclength.gradient_tolerance = st.tolerance * model_->natural_force_scale();
   c.arclength.max_tangent_angle = 0.5;
   c.arclength.corrector = scene_arclength_corrector(scene_);
+  // Opt-in: they change the step sequence, and with it the route of the downward traces
+  // through the skewed and turned cones' branch points (docs/performance.md).
+  c.arclength.stall_iterations = st.contact_stall_iterations;
+  c.arclength.growth_pause_after_failure = st.contact_growth_pause;
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
   // finite angle over any step: short steps are accepted on a converged corrector alone.
   c.arclength.angle_test_max_step = 0.02 * st.contact_max_step;
@@ -770,15 +775,19 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   };
   const auto on_special = [&](const SpecialPoint& sp) { record_special("turned", *turned_, sp); };
   const Eigen::VectorXd no_direction = Eigen::VectorXd::Zero(model_->dimension());
-  const ContactBranchTrace down = trace_contact_branch(*model_, *proxy_, turned_start_, phi0,
-                                                       no_direction, -1.0, pins, o, on_sample,
-                                                       on_special);
+  // Each trace ends where phi_e turns back. Where the turned cone's S4-breaking core is born
+  // (a pitchfork on the turned cone, 5.27 at h = 0.04) the downward trace goes on down the
+  // S4-symmetric cone, or, with other step lengths, turns back up it, unstable: samples of
+  // another branch above the turned cone's, which the comparisons below would read as its own.
+  const ContactBranchTrace down =
+      trace_contact_branch(*model_, *proxy_, turned_start_, phi0, no_direction, -1.0, pins, o,
+                           on_sample, on_special, {turning_back_event(-1)});
   say("# turned branch, downwards: " + down.message);
   count_trace("turned_down", down);
   skip_start = turned_->rows() > 0;
-  const ContactBranchTrace up = trace_contact_branch(*model_, *proxy_, turned_start_, phi0,
-                                                     no_direction, 1.0, pins, o, on_sample,
-                                                     on_special);
+  const ContactBranchTrace up =
+      trace_contact_branch(*model_, *proxy_, turned_start_, phi0, no_direction, 1.0, pins, o,
+                           on_sample, on_special, {turning_back_event(+1)});
   say("# turned branch, upwards: " + up.message);
   count_trace("turned_up", up);
   t.down = {down.reached_bound, down.message};

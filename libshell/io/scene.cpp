@@ -408,6 +408,12 @@ const Field kFields[] = {
   {"study.contact_max_step",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_max_step = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.contact_max_step); }},
+  {"study.contact_stall_iterations",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_stall_iterations = read_int(v, k); },
+   [](const Scene& s) { return Json(s.study.contact_stall_iterations); }},
+  {"study.contact_growth_pause",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_growth_pause = read_int(v, k); },
+   [](const Scene& s) { return Json(s.study.contact_growth_pause); }},
   {"study.penalty_stiffness_factor",
    [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},
@@ -683,6 +689,8 @@ void validate_scene(const Scene& scene) {
     fail("study.orientation_check_at measures the two-fold cone's S4 symmetry: it needs "
          "continuation.mode = 2 (got " + std::to_string(scene.continuation.mode) + ")");
   require_positive(st.contact_max_step, "study.contact_max_step");
+  require_at_least(st.contact_stall_iterations, 0, "study.contact_stall_iterations");
+  require_at_least(st.contact_growth_pause, 0, "study.contact_growth_pause");
   require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");
   for (std::size_t i = 0; i < st.orientation_check_turns.size(); ++i) {
     const std::string key = "study.orientation_check_turns[" + std::to_string(i) + "]";

@@ -285,6 +285,13 @@ struct SceneStudy {
   std::optional<double> skew_search_at;
   /// econe_contact only: the largest arclength step of the branches with contact (> 0).
   double contact_max_step = 0.02;
+  /// econe_contact only: the branches with contact give a Newton corrector up after this many
+  /// iterations if its residual has not fallen to a tenth (ArclengthOptions::stall_iterations;
+  /// >= 0, 0 = off: max_corrector_iterations only).
+  int contact_stall_iterations = 0;
+  /// econe_contact only: after a failed step of a branch with contact, this many accepted
+  /// steps keep their length (ArclengthOptions::growth_pause_after_failure; >= 0, 0 = off).
+  int contact_growth_pause = 0;
   /// econe_contact only: the penalty stiffness k = F Y l^2 / h, l the contact proxy's spacing
   /// (docs/contact.md, "Penalty stiffness"); this is F (> 0).
   double penalty_stiffness_factor = 10.0;

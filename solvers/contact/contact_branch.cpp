@@ -165,6 +165,9 @@ ContactBranchTrace trace_contact_branch(
   bool safeguarded = false;
   // This segment's start failed that too and was relaxed by minimisation.
   bool relaxed = false;
+  // The step control's growth pause after a failed step (ArclengthOptions::
+  // growth_pause_after_failure), carried from segment to segment.
+  int growth_pause = arc.initial_growth_pause;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -194,6 +197,7 @@ ContactBranchTrace trace_contact_branch(
       segment_options.max_corrector_iterations = 2 * arc.max_corrector_iterations;
     }
     segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
+    segment_options.initial_growth_pause = growth_pause;
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
     const int segment = out.cost.segments++;
 
@@ -296,6 +300,7 @@ ContactBranchTrace trace_contact_branch(
     for (const SpecialPoint& sp : trace.special_points) out.special_points.push_back(sp);
     for (const LocatedEvent& e : trace.events) out.events.push_back(e);
     out.failed_steps += trace.failed_steps;
+    growth_pause = trace.growth_pause_left;
     if (samples_in_segment == 0) {
       // The start, an equilibrium on the previous pair set, did not converge on the rebuilt
       // one (pairs that enter between the two sets can change the forces abruptly). Step back

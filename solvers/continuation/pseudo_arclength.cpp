@@ -131,9 +131,11 @@ class BranchSolver {
     }
     // Newton from the predictor or from the chord's best iterate; a converged chord's point
     // converges at once, and is factorised here for its tangent and stability index.
+    double first_residual = 0.0;
     for (int it = 0; it <= options_.max_corrector_iterations; ++it) {
       if (!linearize(x, lambda)) return false;
       const double residual = fixed_.free_inf_norm(gradient_);
+      if (it == 0) first_residual = residual;
       if (residual <= options_.gradient_tolerance) {
         // After a chord that stopped contracting, its iterations count as one of Newton's.
         step_factor_ = chord_converged ? factor(options_.target_chord_iterations, chord_iterations)
@@ -141,6 +143,11 @@ class BranchSolver {
         return converged(x, lambda, chord_iterations + it, tx, tl, sample, analyse);
       }
       if (it == options_.max_corrector_iterations) return false;
+      if (it > 0 && it == options_.stall_iterations &&
+          residual > options_.stall_reduction * first_residual) {
+        ++cost_.stalled_correctors;
+        return false;
+      }
       Eigen::VectorXd a = timed_solve(gradient_);
       Eigen::VectorXd b = timed_solve(parameter_derivative_);
       fixed_.zero_fixed(a);
@@ -358,6 +365,13 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     throw std::invalid_argument("ArclengthOptions: max_residual_backtracks must be >= 0");
   if (!(options.residual_growth_limit >= 1.0))
     throw std::invalid_argument("ArclengthOptions: residual_growth_limit must be >= 1");
+  if (options.stall_iterations < 0)
+    throw std::invalid_argument("ArclengthOptions: stall_iterations must be >= 0");
+  if (!(options.stall_reduction > 0.0 && options.stall_reduction <= 1.0))
+    throw std::invalid_argument("ArclengthOptions: stall_reduction must be in (0, 1]");
+  if (options.growth_pause_after_failure < 0 || options.initial_growth_pause < 0)
+    throw std::invalid_argument(
+        "ArclengthOptions: growth_pause_after_failure and initial_growth_pause must be >= 0");
   BranchTrace out;
   // The caller's callbacks and the event test functions, timed.
   const auto sample_done = [&](const BranchSample& s) {
@@ -392,6 +406,14 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
 
   double step = options.initial_step;
   const double cos_max = std::cos(options.max_tangent_angle);
+  // The step control's factor of an accepted step, at most 1 during a growth pause (which
+  // the step uses up).
+  out.growth_pause_left = options.initial_growth_pause;
+  const auto paused = [&out](double factor) {
+    if (out.growth_pause_left <= 0) return factor;
+    --out.growth_pause_left;
+    return std::min(factor, 1.0);
+  };
   while (out.steps < options.max_steps) {
     const BranchSample& p = out.last;
     if (p.parameter < options.parameter_min || p.parameter > options.parameter_max) {
@@ -410,6 +432,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     double step_factor = solver.step_factor();
     if (!ok) {
       ++out.failed_steps;
+      out.growth_pause_left = options.growth_pause_after_failure;
       step /= 2;
       if (step < options.min_step) {
         out.message = "step below min_step at parameter " + std::to_string(p.parameter);
@@ -502,7 +525,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
           static_cast<int>(out.special_points.size()) >= options.max_special_points) {
         out.last = std::move(next);
         ++out.steps;
-        out.last.next_step = next_step_after(step, step_factor, options);
+        out.last.next_step = next_step_after(step, paused(step_factor), options);
         sample_done(out.last);
         out.reached_bound = true;
         out.message = "found max_special_points special points";
@@ -563,7 +586,7 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
 
     out.last = std::move(next);
     ++out.steps;
-    step = next_step_after(step, step_factor, options);
+    step = next_step_after(step, paused(step_factor), options);
     out.last.next_step = step;
     sample_done(out.last);
     if (stop) {

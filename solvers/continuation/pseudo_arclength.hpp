@@ -37,6 +37,24 @@ struct ArclengthOptions {
   Corrector corrector = Corrector::Newton;
   int target_iterations = 4;   ///< Newton iterations the step control aims at
   int max_corrector_iterations = 15;
+  /// Newton's corrector gives a step up once this many iterations have left its residual (the
+  /// free gradient's inf-norm) above `stall_reduction` times the predictor's, instead of
+  /// running on to max_corrector_iterations. On a contact penalty's piecewise Hessian a
+  /// corrector that has not converged by then cycles between pieces (the residual repeating
+  /// with period 2 or 3) or diverges; one that converges has fallen far below it (the slowest
+  /// measured, 7 iterations to a tenth). 0 (default): only max_corrector_iterations.
+  int stall_iterations = 0;
+  double stall_reduction = 0.1;  ///< in (0, 1]
+  /// After a failed step the next this many accepted steps keep their length (the step
+  /// control's factor capped at 1) instead of lengthening on a corrector that converged in few
+  /// iterations. Where steps fail by leaving the region in which Newton converges, not by
+  /// needing many iterations inside it (a contact penalty's pairs entering within a step), the
+  /// iteration count of the accepted steps says nothing of that limit, and without this memory
+  /// every accepted step doubles the step into a failure. 0 (default): no memory.
+  int growth_pause_after_failure = 0;
+  /// Accepted steps of such a pause still to come at the start: a trace that continues another
+  /// (the next pair-set segment of a contact branch) passes BranchTrace::growth_pause_left.
+  int initial_growth_pause = 0;
   /// Chord iterations the step control aims at (Corrector::Chord): a step whose chord
   /// converged in fewer is lengthened, in more shortened, as for Newton's target_iterations.
   int target_chord_iterations = 10;
@@ -150,6 +168,8 @@ struct TraceCost {
   int chord_fallbacks = 0;
   /// Halvings of Newton updates (ArclengthOptions::max_residual_backtracks).
   int residual_backtracks = 0;
+  /// Newton correctors given up by ArclengthOptions::stall_iterations.
+  int stalled_correctors = 0;
   double assembly_seconds = 0.0;  ///< family.evaluate (the chord's gradients too) + dg/dlambda
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
@@ -169,6 +189,7 @@ struct TraceCost {
     gradient_evaluations += other.gradient_evaluations;
     chord_fallbacks += other.chord_fallbacks;
     residual_backtracks += other.residual_backtracks;
+    stalled_correctors += other.stalled_correctors;
     assembly_seconds += other.assembly_seconds;
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;
@@ -192,6 +213,9 @@ struct BranchTrace {
   int failed_steps = 0;
   /// Samples that landed just past a special point and were replaced by a step over it.
   int branch_point_steps_over = 0;
+  /// Accepted steps of a growth pause (ArclengthOptions::growth_pause_after_failure) still to
+  /// come where the trace ended.
+  int growth_pause_left = 0;
   TraceCost cost;  ///< of this call (the branch-point search and events included)
 };
 

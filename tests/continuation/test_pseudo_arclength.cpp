@@ -347,6 +347,141 @@ TEST(PseudoArclength, HalvedNewtonUpdatesConvergeWhereFullOnesDiverge) {
   EXPECT_THROW(trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o), std::invalid_argument);
 }
 
+// ArclengthOptions::stall_iterations: a corrector whose residual has not fallen to a tenth of
+// the predictor's by then is given up, where a diverging one would run on; converging ones are
+// untouched.
+TEST(PseudoArclength, StalledCorrectorIsGivenUpAfterStallIterations) {
+  const ArctanFamily family;
+  ArclengthOptions o = toy_options();
+  // From x = 3 at lambda = 0 Newton's iterates are 3, -9.5, 124, -2.4e4, ...: |atan(x)| rises
+  // from 1.249 towards pi/2 and never falls below a tenth of it.
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 3.0);
+  const Eigen::VectorXd along_state = Eigen::VectorXd::Zero(1);
+  const BranchTrace plain = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o);
+  EXPECT_FALSE(plain.start_converged);
+  EXPECT_EQ(plain.cost.stalled_correctors, 0);
+  EXPECT_GT(plain.cost.linearizations, 5);
+  o.stall_iterations = 2;
+  const BranchTrace stalled = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o);
+  EXPECT_FALSE(stalled.start_converged);
+  EXPECT_EQ(stalled.cost.stalled_correctors, 1);
+  EXPECT_EQ(stalled.cost.linearizations, 3);  // at x = 3, -9.5 and 124, then given up
+
+  // On the S-curve every corrector converges by quadratic steps: the same trace, to the bit.
+  ToyFamily curve(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5, lambda0 = y0 * y0 * y0 - y0;
+  Eigen::VectorXd start = Eigen::VectorXd::Zero(curve.dimension());
+  start(0) = y0;
+  ArclengthOptions c = toy_options();
+  std::vector<BranchSample> with, without;
+  const BranchTrace a = trace_branch(curve, start, -lambda0, +1, {}, c,
+                                     [&](const BranchSample& s) { without.push_back(s); });
+  c.stall_iterations = 2;
+  const BranchTrace b = trace_branch(curve, start, -lambda0, +1, {}, c,
+                                     [&](const BranchSample& s) { with.push_back(s); });
+  EXPECT_EQ(b.cost.stalled_correctors, 0);
+  EXPECT_EQ(a.cost.linearizations, b.cost.linearizations);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t i = 0; i < with.size(); ++i) EXPECT_EQ(with[i].parameter, without[i].parameter);
+
+  c.stall_iterations = -1;
+  EXPECT_THROW(trace_branch(curve, start, -lambda0, +1, {}, c), std::invalid_argument);
+  c.stall_iterations = 2;
+  c.stall_reduction = 0.0;
+  EXPECT_THROW(trace_branch(curve, start, -lambda0, +1, {}, c), std::invalid_argument);
+}
+
+/// E(x; lambda) = w F((x - sin(lambda)) / w) with F'(u) = u for |u| <= 1 and sign(u) (1 +
+/// eps (|u| - 1)) outside: the branch is x = sin(lambda). Inside the band |u| <= 1 the
+/// gradient is linear, so Newton converges in one update; outside it the slope is eps and the
+/// first update throws the iterate a thousand band widths away. A step fails once its
+/// predictor lands outside the band, whatever the iteration counts of the steps before: the
+/// failure mode of a contact penalty's branches, whose pairs enter within a step.
+class LinearBandFamily : public ParametrizedObjective {
+ public:
+  static constexpr double w = 0.02, eps = 1e-3;
+  Eigen::Index dimension() const override { return 1; }
+  Eigen::SparseMatrix<double> hessian_pattern() const override {
+    Eigen::SparseMatrix<double> H(1, 1);
+    H.insert(0, 0) = 0.0;
+    H.makeCompressed();
+    return H;
+  }
+  double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda, Eigen::VectorXd* g,
+                  Eigen::SparseMatrix<double>* H) const override {
+    const double u = (x(0) - std::sin(lambda)) / w, a = std::abs(u);
+    if (g) *g = Eigen::VectorXd::Constant(1, a <= 1 ? u : std::copysign(1 + eps * (a - 1), u));
+    if (H) H->coeffRef(0, 0) = slope(u) / w;
+    return w * (a <= 1 ? 0.5 * u * u : 0.5 + (a - 1) + 0.5 * eps * (a - 1) * (a - 1));
+  }
+  Eigen::VectorXd gradient_parameter_derivative(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                double lambda) const override {
+    const double u = (x(0) - std::sin(lambda)) / w;
+    return Eigen::VectorXd::Constant(1, -std::cos(lambda) * slope(u) / w);
+  }
+
+ private:
+  static double slope(double u) { return std::abs(u) <= 1 ? 1.0 : eps; }
+};
+
+// ArclengthOptions::growth_pause_after_failure: a step that converged in one or two iterations
+// doubles, and where the limit is the basin's width, not the iteration count, it doubles into
+// a failure again and again. With the pause the accepted steps after a failure keep their
+// length, fewer steps fail, and the branch is the same.
+TEST(PseudoArclength, GrowthPauseAfterAFailedStepKeepsTheStepLength) {
+  const LinearBandFamily family;
+  ArclengthOptions o = toy_options();
+  o.parameter_min = -1.0;
+  o.parameter_max = 6.0;
+  o.max_step = 2.0;
+  o.max_tangent_angle = 1.5;
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
+  const auto trace = [&](int pause, std::vector<BranchSample>& samples) {
+    o.growth_pause_after_failure = pause;
+    return trace_branch(family, x0, 0.0, +1, {}, o,
+                        [&](const BranchSample& s) { samples.push_back(s); });
+  };
+  std::vector<BranchSample> free_samples, paused_samples;
+  const BranchTrace free = trace(0, free_samples);
+  const BranchTrace paused = trace(1000, paused_samples);
+  ASSERT_TRUE(free.reached_bound) << free.message;
+  ASSERT_TRUE(paused.reached_bound) << paused.message;
+  // Measured: 18 failed steps and 427 linearisations without the pause, 2 and 212 with it.
+  EXPECT_GE(free.failed_steps, 10);
+  EXPECT_LE(4 * paused.failed_steps, free.failed_steps);
+  EXPECT_LT(2 * paused.cost.linearizations, free.cost.linearizations + 10);
+  EXPECT_GT(paused.growth_pause_left, 1000 - paused.steps);
+  EXPECT_LT(paused.growth_pause_left, 1000);
+  // The steps double until the failure, and never grow after it.
+  bool failed = false;
+  for (std::size_t i = 2; i < paused_samples.size(); ++i) {
+    const double before = paused_samples[i - 1].arclength - paused_samples[i - 2].arclength;
+    const double after = paused_samples[i].arclength - paused_samples[i - 1].arclength;
+    if (after < before) failed = true;
+    if (failed) {
+      EXPECT_LE(after, before * (1 + 1e-12)) << "sample " << i;
+    }
+  }
+  EXPECT_TRUE(failed);
+  for (const BranchSample& s : paused_samples)
+    EXPECT_NEAR(s.x(0), std::sin(s.parameter), 1e-10) << "lambda = " << s.parameter;
+
+  // A failed step's corrector cycles far outside the band: given up after two iterations
+  // (stall_iterations) it costs 3 linearisations instead of 16, and the trace is the same.
+  o.stall_iterations = 2;
+  std::vector<BranchSample> stalled_samples;
+  const BranchTrace stalled = trace(0, stalled_samples);
+  EXPECT_EQ(stalled.failed_steps, free.failed_steps);
+  EXPECT_EQ(stalled.cost.stalled_correctors, free.failed_steps);
+  EXPECT_EQ(stalled.cost.linearizations, free.cost.linearizations - 13 * free.failed_steps);
+  ASSERT_EQ(stalled_samples.size(), free_samples.size());
+  for (std::size_t i = 0; i < free_samples.size(); ++i)
+    EXPECT_EQ(stalled_samples[i].parameter, free_samples[i].parameter);
+
+  o.growth_pause_after_failure = -1;
+  EXPECT_THROW(trace_branch(family, x0, 0.0, +1, {}, o), std::invalid_argument);
+}
+
 // ArclengthOptions::stability_index replaces the traced Hessian's count (as when tracing in a
 // symmetric subspace, where the index is the full Hessian's): special points are where it
 // changes, located as precisely, and the traced Hessian's own change is not one.

@@ -956,6 +956,32 @@ TEST(Scene, HardContactBranchesNameTracedBranchesOnceEach) {
             std::string::npos);
 }
 
+TEST(Scene, ContactStepControlKeysAreOffByDefaultAndNegativeCountsRefused) {
+  EXPECT_EQ(default_scene().study.contact_stall_iterations, 0);
+  EXPECT_EQ(default_scene().study.contact_growth_pause, 0);
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "econe_contact", "contact_stall_iterations": 8,
+                    "contact_growth_pause": 6}})",
+      "test");
+  EXPECT_EQ(s.study.contact_stall_iterations, 8);
+  EXPECT_EQ(s.study.contact_growth_pause, 6);
+  const Scene back = parse_scene(scene_to_json(s), "round trip");
+  EXPECT_EQ(back.study.contact_stall_iterations, 8);
+  EXPECT_EQ(back.study.contact_growth_pause, 6);
+  using test_support::error_of;
+  const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
+  EXPECT_NE(
+      error_of(parse(R"({"study": {"kind": "econe_contact", "contact_stall_iterations": -1}})"))
+          .find("study.contact_stall_iterations"),
+      std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact", "contact_growth_pause": -2}})"))
+                .find("study.contact_growth_pause"),
+            std::string::npos);
+  EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact", "contact_growth_pause": 1.5}})"))
+                .find("study.contact_growth_pause"),
+            std::string::npos);
+}
+
 TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
   EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
   const Scene s = parse_scene(

@@ -209,6 +209,12 @@ TEST(EconeStageKey, ChangesWithWhatStagesTwoToSixDependOnAndWithNothingElse) {
   s = scene;
   s.study.ipopt_check = !s.study.ipopt_check;
   EXPECT_NE(econe_stage_key(s, start), key);
+  s = scene;
+  s.study.contact_stall_iterations = 8;
+  EXPECT_NE(econe_stage_key(s, start), key);
+  s = scene;
+  s.study.contact_growth_pause = 6;
+  EXPECT_NE(econe_stage_key(s, start), key);
 
   // Keys they do not: the output and the stages after 6; hard_contact_at goes point by point.
   s = scene;
