@@ -17,6 +17,7 @@
 #include "solvers/continuation/cone_branch_entry.hpp"
 #include "solvers/continuation/pseudo_arclength.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
+#include "support/one_unknown_family.hpp"
 
 namespace growshell {
 namespace {
@@ -287,15 +288,8 @@ TEST(PseudoArclength, ChordTraceStartedAgainFromASampleRepeatsTheRest) {
 /// E(x; lambda) = x atan(x) - ln(1 + x^2) / 2 - lambda x: g = atan(x) - lambda, H = 1 / (1 + x^2).
 /// The branch is x = tan(lambda). Newton on atan diverges from |x| > 1.39 (each update
 /// overshoots to a larger |x| of the other sign), the textbook case for a safeguarded update.
-class ArctanFamily : public ParametrizedObjective {
+class ArctanFamily : public test_support::OneUnknownFamily {
  public:
-  Eigen::Index dimension() const override { return 1; }
-  Eigen::SparseMatrix<double> hessian_pattern() const override {
-    Eigen::SparseMatrix<double> H(1, 1);
-    H.insert(0, 0) = 0.0;
-    H.makeCompressed();
-    return H;
-  }
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda, Eigen::VectorXd* g,
                   Eigen::SparseMatrix<double>* H) const override {
     const double y = x(0);
@@ -397,16 +391,9 @@ TEST(PseudoArclength, StalledCorrectorIsGivenUpAfterStallIterations) {
 /// first update throws the iterate a thousand band widths away. A step fails once its
 /// predictor lands outside the band, whatever the iteration counts of the steps before: the
 /// failure mode of a contact penalty's branches, whose pairs enter within a step.
-class LinearBandFamily : public ParametrizedObjective {
+class LinearBandFamily : public test_support::OneUnknownFamily {
  public:
   static constexpr double w = 0.02, eps = 1e-3;
-  Eigen::Index dimension() const override { return 1; }
-  Eigen::SparseMatrix<double> hessian_pattern() const override {
-    Eigen::SparseMatrix<double> H(1, 1);
-    H.insert(0, 0) = 0.0;
-    H.makeCompressed();
-    return H;
-  }
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda, Eigen::VectorXd* g,
                   Eigen::SparseMatrix<double>* H) const override {
     const double u = (x(0) - std::sin(lambda)) / w, a = std::abs(u);

@@ -8,20 +8,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "support/one_unknown_family.hpp"
+
 namespace growshell {
 namespace {
 
 /// E = y^4/4 - y^2/2 + lambda y in one unknown: g = y^3 - y + lambda, the S-curve
 /// lambda = y - y^3 with folds at y = +-1/sqrt 3.
-class SCurve : public ParametrizedObjective {
+class SCurve : public test_support::OneUnknownFamily {
  public:
-  Eigen::Index dimension() const override { return 1; }
-  Eigen::SparseMatrix<double> hessian_pattern() const override {
-    Eigen::SparseMatrix<double> H(1, 1);
-    H.insert(0, 0) = 0.0;
-    H.makeCompressed();
-    return H;
-  }
   double evaluate(const Eigen::Ref<const Eigen::VectorXd>& x, double lambda, Eigen::VectorXd* g,
                   Eigen::SparseMatrix<double>* H) const override {
     const double y = x(0);
@@ -35,11 +30,13 @@ class SCurve : public ParametrizedObjective {
   }
 };
 
+/// Steps of 0.1 to 0.25 in arclength, the fold located to 1e-7, and lambda within [-3, 3].
 ArclengthOptions options() {
   ArclengthOptions o;
-  o.initial_step = 0.05;
-  o.max_step = 0.2;
+  o.initial_step = 0.1;
+  o.max_step = 0.25;
   o.gradient_tolerance = 1e-12;
+  o.special_point_tolerance = 1e-7;
   o.parameter_min = -3.0;
   o.parameter_max = 3.0;
   return o;
