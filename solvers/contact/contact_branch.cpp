@@ -29,6 +29,10 @@ double seconds_since(Clock::time_point t0) {
 /// close: the segment ends there and is retried from the last accepted sample.
 struct PairSetViolation {};
 
+/// Thrown from the segment's sample callback when a special point at the segment boundary
+/// makes ArclengthOptions::max_special_points of the whole trace: the trace ends there.
+struct SpecialPointLimit {};
+
 void validate(const ContactBranchOptions& o) {
   const auto positive = [](double v, const char* name) {
     if (!(std::isfinite(v) && v > 0.0))
@@ -195,10 +199,16 @@ ContactBranchTrace trace_contact_branch(
       segment_options.max_residual_backtracks =
           std::max(arc.max_residual_backtracks, options.start_residual_backtracks);
       segment_options.max_corrector_iterations = 2 * arc.max_corrector_iterations;
+      segment_options.start_corrector_iterations =
+          2 * std::max(arc.start_corrector_iterations, arc.max_corrector_iterations);
     }
     segment_options.initial_step = std::clamp(step, arc.min_step, arc.max_step);
     segment_options.initial_growth_pause = growth_pause;
     segment_options.max_steps = std::min(options.steps_per_segment, arc.max_steps - out.steps);
+    // The limit on special points holds for the whole trace, not each segment.
+    if (arc.max_special_points > 0)
+      segment_options.max_special_points =
+          arc.max_special_points - static_cast<int>(out.special_points.size());
     const int segment = out.cost.segments++;
 
     const bool emit_start = !have_sample;
@@ -241,6 +251,10 @@ ContactBranchTrace trace_contact_branch(
           sp.bracket_width = std::abs(s.parameter - out.last.sample.parameter);
           out.special_points.push_back(sp);
           if (on_special) on_special(sp);
+          out.last.sample = s;
+          if (arc.max_special_points > 0 &&
+              static_cast<int>(out.special_points.size()) >= arc.max_special_points)
+            throw SpecialPointLimit{};
         }
         out.last.sample = s;
         return;
@@ -255,7 +269,7 @@ ContactBranchTrace trace_contact_branch(
     };
 
     BranchTrace trace;
-    bool violated = false;
+    bool violated = false, limit_reached = false;
     t0 = Clock::now();
     try {
       if (subspace) {
@@ -269,6 +283,14 @@ ContactBranchTrace trace_contact_branch(
       }
     } catch (const PairSetViolation&) {
       violated = true;
+    } catch (const SpecialPointLimit&) {
+      limit_reached = true;
+    }
+    if (limit_reached) {
+      out.cost.continuation.total_seconds += seconds_since(t0);
+      out.reached_bound = true;
+      out.message = "found max_special_points special points";
+      break;
     }
     if (violated) {
       // The cost of the abandoned segment is known only in wall time.

@@ -35,8 +35,8 @@ namespace growshell {
 
 /// Settings of trace_contact_branch. Lengths in metres.
 struct ContactBranchOptions {
-  /// Step control and tolerances of each segment (parameter bounds and max_steps apply to the
-  /// whole trace).
+  /// Step control and tolerances of each segment (parameter bounds, max_steps and
+  /// max_special_points apply to the whole trace: a special point at a segment boundary counts).
   ArclengthOptions arclength;
   double contact_distance = 0.0;  ///< mid-surface distance at which the sheets touch, > 0
   double exclusion_radius = 0.0;  ///< neighbours on the sheet within this are never contact, > 0

@@ -112,8 +112,10 @@ class BranchSolver {
   /// factorisation, if there is one, and Newton takes over where the chord stops contracting.
   /// With `analyse` false only the state and parameter are wanted (an event's bisection): the
   /// tangent and the stability index are left out, and so is a chord's final factorisation.
+  /// `max_iterations` > 0 replaces options.max_corrector_iterations (a trace's start).
   bool correct(const Eigen::VectorXd& xp, double lp, const Eigen::VectorXd& tx, double tl,
-               BranchSample& sample, bool analyse = true) {
+               BranchSample& sample, bool analyse = true, int max_iterations = 0) {
+    const int max_newton = max_iterations > 0 ? max_iterations : options_.max_corrector_iterations;
     Eigen::VectorXd x = xp;
     double lambda = lp;
     const bool use_chord = options_.corrector == ArclengthOptions::Corrector::Chord && factorized_;
@@ -132,7 +134,7 @@ class BranchSolver {
     // Newton from the predictor or from the chord's best iterate; a converged chord's point
     // converges at once, and is factorised here for its tangent and stability index.
     double first_residual = 0.0;
-    for (int it = 0; it <= options_.max_corrector_iterations; ++it) {
+    for (int it = 0; it <= max_newton; ++it) {
       if (!linearize(x, lambda)) return false;
       const double residual = fixed_.free_inf_norm(gradient_);
       if (it == 0) first_residual = residual;
@@ -142,7 +144,7 @@ class BranchSolver {
                                        : factor(options_.target_iterations, use_chord ? it + 1 : it);
         return converged(x, lambda, chord_iterations + it, tx, tl, sample, analyse);
       }
-      if (it == options_.max_corrector_iterations) return false;
+      if (it == max_newton) return false;
       if (it > 0 && it == options_.stall_iterations &&
           residual > options_.stall_reduction * first_residual) {
         ++cost_.stalled_correctors;
@@ -365,6 +367,10 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     throw std::invalid_argument("ArclengthOptions: max_residual_backtracks must be >= 0");
   if (!(options.residual_growth_limit >= 1.0))
     throw std::invalid_argument("ArclengthOptions: residual_growth_limit must be >= 1");
+  if (options.max_corrector_iterations < 1 || options.start_corrector_iterations < 0)
+    throw std::invalid_argument(
+        "ArclengthOptions: max_corrector_iterations must be >= 1 and start_corrector_iterations "
+        ">= 0");
   if (options.stall_iterations < 0)
     throw std::invalid_argument("ArclengthOptions: stall_iterations must be >= 0");
   if (!(options.stall_reduction > 0.0 && options.stall_reduction <= 1.0))
@@ -378,6 +384,16 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     ScopedSeconds timer(solver.cost().callback_seconds);
     if (on_sample) on_sample(s);
   };
+  const auto step_accepted = [&](const BranchSample& from, const BranchSample& to) {
+    if (!options.accept_step) return true;
+    ScopedSeconds timer(solver.cost().event_seconds);
+    try {
+      if (options.accept_step(from, to)) return true;
+    } catch (const std::runtime_error&) {
+    }
+    ++solver.cost().rejected_steps;
+    return false;
+  };
   const auto event_value = [&](const BranchEvent& e, const BranchSample& s) {
     ScopedSeconds timer(solver.cost().event_seconds);
     return e.value(s);
@@ -390,7 +406,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     const double norm = std::sqrt(solver.dot(dx, direction_parameter, dx, direction_parameter));
     if (!(norm > 0.0)) throw std::invalid_argument("trace_branch_along: zero direction");
     BranchSample start;
-    if (!solver.correct(x0, lambda0, dx / norm, direction_parameter / norm, start)) {
+    if (!solver.correct(x0, lambda0, dx / norm, direction_parameter / norm, start, true,
+                        options.start_corrector_iterations)) {
       out.last.x = x0;
       out.last.parameter = lambda0;
       out.message = "the start is not an equilibrium the corrector can converge to";
@@ -427,7 +444,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     const bool ok = solver.correct(xp, lp, p.tangent_state, p.tangent_parameter, next) &&
                     (step <= options.angle_test_max_step ||
                      solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
-                                p.tangent_parameter) >= cos_max);
+                                p.tangent_parameter) >= cos_max) &&
+                    step_accepted(p, next);
     // The step control's factor of this step (bisections below correct other points).
     double step_factor = solver.step_factor();
     if (!ok) {
@@ -498,7 +516,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
                            p.tangent_parameter, over) &&
             over.negative_eigenvalues == next.negative_eigenvalues &&
             solver.dot(over.tangent_state, over.tangent_parameter, p.tangent_state,
-                       p.tangent_parameter) >= cos_max) {
+                       p.tangent_parameter) >= cos_max &&
+            step_accepted(p, over)) {
           over.arclength = p.arclength + s_over;
           step_factor = solver.step_factor();
           next = std::move(over);

@@ -37,6 +37,12 @@ struct ArclengthOptions {
   Corrector corrector = Corrector::Newton;
   int target_iterations = 4;   ///< Newton iterations the step control aims at
   int max_corrector_iterations = 15;
+  /// Iterations the correction of the trace's start may take (0: max_corrector_iterations). A
+  /// start is no predictor one step from a converged point: it may lie off the branch by
+  /// whatever brought it there (e.g. a contact branch's previous sample on a rebuilt pair set),
+  /// and there is no step to halve. Lets max_corrector_iterations be low (a guard against
+  /// correctors that converge onto another branch) without failing such starts.
+  int start_corrector_iterations = 0;
   /// Newton's corrector gives a step up once this many iterations have left its residual (the
   /// free gradient's inf-norm) above `stall_reduction` times the predictor's, instead of
   /// running on to max_corrector_iterations. On a contact penalty's piecewise Hessian a
@@ -96,6 +102,13 @@ struct ArclengthOptions {
   /// index that matters is the full Hessian's. It may throw std::runtime_error (e.g. at a
   /// singular point): the point then counts as not converged.
   std::function<int(const BranchSample&)> stability_index;
+  /// If set, a step from sample `from` whose corrector converged to `to` counts only if this
+  /// accepts it; otherwise it fails, and its step is halved. A test that the corrector stayed
+  /// on the branch being traced, where Newton on the step's hyperplane can converge onto a
+  /// nearby branch instead (next to a fold), e.g. by a symmetry the traced branch breaks and
+  /// the other has. Not applied to the start, nor to the points of a bisection. It may throw
+  /// std::runtime_error: the step then fails.
+  std::function<bool(const BranchSample& from, const BranchSample& to)> accept_step;
 };
 
 /// A converged point of a branch.
@@ -170,10 +183,12 @@ struct TraceCost {
   int residual_backtracks = 0;
   /// Newton correctors given up by ArclengthOptions::stall_iterations.
   int stalled_correctors = 0;
+  /// Converged steps that ArclengthOptions::accept_step rejected.
+  int rejected_steps = 0;
   double assembly_seconds = 0.0;  ///< family.evaluate (the chord's gradients too) + dg/dlambda
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
-  double event_seconds = 0.0;   ///< evaluating the event test functions
+  double event_seconds = 0.0;  ///< the event test functions and ArclengthOptions::accept_step
   /// ArclengthOptions::stability_index: calls and their time (e.g. the full Hessian's
   /// assembly and LDL^T factorisation when tracing in a symmetric subspace).
   int stability_evaluations = 0;
@@ -190,6 +205,7 @@ struct TraceCost {
     chord_fallbacks += other.chord_fallbacks;
     residual_backtracks += other.residual_backtracks;
     stalled_correctors += other.stalled_correctors;
+    rejected_steps += other.rejected_steps;
     assembly_seconds += other.assembly_seconds;
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;

@@ -81,6 +81,10 @@ BranchTrace trace_from_reduced(const ParametrizedObjective& family,
     return options.stability_index ? options.stability_index(full)
                                    : full_count->at(full.x, full.parameter);
   };
+  if (options.accept_step)
+    o.accept_step = [&](const BranchSample& from, const BranchSample& to) {
+      return options.accept_step(to_caller(from), to_caller(to));
+    };
   std::vector<BranchEvent> full_events = events;
   for (BranchEvent& e : full_events)
     e.value = [&, value = e.value](const BranchSample& s) { return value(to_caller(s)); };

@@ -133,6 +133,75 @@ TEST(ContactBranch, TheCallersStabilityIndexIsCalledWithTheSegmentsEnergy) {
   EXPECT_TRUE(t.special_points.empty());
 }
 
+// ArclengthOptions::max_special_points holds for the whole trace, not each pair-set segment:
+// with two steps a segment, the trace ends at the first change of the stability index, inside
+// a segment (located by bisection) or where a segment's corrected start has it.
+TEST(ContactBranch, MaxSpecialPointsEndsTheWholeTraceNotItsSegment) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.steps_per_segment = 2;
+  o.arclength.max_steps = 40;
+  o.arclength.max_special_points = 1;
+  struct Run {
+    ContactBranchTrace trace;
+    std::vector<ContactBranchSample> samples;
+  };
+  const auto run = [&](const ContactBranchOptions& options) {
+    Run r;
+    r.trace = trace_contact_branch(d.model, d.proxy, x, GrownDisc::kStart,
+                                   Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, options,
+                                   [&](const ContactBranchSample& s) { r.samples.push_back(s); });
+    return r;
+  };
+
+  // An index that changes at phi_star, past the first segment.
+  const double phi_star = GrownDisc::kStart + 0.2;
+  o.stability_index_for_segment = [phi_star](const ParametrizedObjective&,
+                                             const SymmetricSubspace*) {
+    return [phi_star](const BranchSample& s) { return s.parameter > phi_star ? 1 : 0; };
+  };
+  const Run inside = run(o);
+  EXPECT_TRUE(inside.trace.reached_bound);
+  EXPECT_EQ(inside.trace.message, "found max_special_points special points");
+  ASSERT_EQ(inside.trace.special_points.size(), 1u);
+  EXPECT_NEAR(inside.trace.special_points[0].parameter, phi_star,
+              o.arclength.special_point_tolerance);
+  EXPECT_GE(inside.trace.cost.segments, 3);
+  ASSERT_FALSE(inside.samples.empty());
+  const BranchSample& end = inside.samples.back().sample;
+  EXPECT_EQ(end.negative_eigenvalues, 1);
+  EXPECT_GT(end.parameter, phi_star);
+  EXPECT_LE(end.parameter, phi_star + 2 * o.arclength.max_step);
+  EXPECT_EQ(end.parameter, inside.trace.last.sample.parameter);
+
+  // An index that changes from the third segment on: at that segment's corrected start.
+  int segments = 0;
+  o.stability_index_for_segment = [&segments](const ParametrizedObjective&,
+                                              const SymmetricSubspace*) {
+    const int index = ++segments >= 3 ? 1 : 0;
+    return [index](const BranchSample&) { return index; };
+  };
+  const Run boundary = run(o);
+  EXPECT_TRUE(boundary.trace.reached_bound);
+  EXPECT_EQ(boundary.trace.message, "found max_special_points special points");
+  ASSERT_EQ(boundary.trace.special_points.size(), 1u);
+  EXPECT_EQ(boundary.trace.special_points[0].negative_after, 1);
+  EXPECT_EQ(segments, 3);
+  EXPECT_EQ(boundary.trace.steps, 4);  // two segments of two steps
+  EXPECT_EQ(boundary.samples.size(), 5u);
+  EXPECT_EQ(boundary.trace.last.sample.negative_eigenvalues, 1);
+
+  // Without the limit the same trace goes on past it.
+  segments = 0;
+  o.arclength.max_special_points = 0;
+  o.arclength.max_steps = 8;
+  const Run unlimited = run(o);
+  EXPECT_EQ(unlimited.trace.message, "reached max_steps");
+  EXPECT_EQ(unlimited.trace.special_points.size(), 1u);
+  EXPECT_EQ(unlimited.trace.steps, 8);
+}
+
 TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolerance) {
   GrownDisc& d = disc();
   const double phi0 = GrownDisc::kStart;

@@ -385,6 +385,79 @@ TEST(PseudoArclength, StalledCorrectorIsGivenUpAfterStallIterations) {
   EXPECT_THROW(trace_branch(curve, start, -lambda0, +1, {}, c), std::invalid_argument);
 }
 
+// ArclengthOptions::start_corrector_iterations: the start may take more iterations than the
+// steps. From x = 1.3 at lambda = 0 Newton on atan converges to x = 0 in 7 iterations
+// (1.3, -1.08, 0.72, -0.23, 0.008, ...): with max_corrector_iterations 3 alone the start fails,
+// with 15 for the start it converges, and the steps, each started on the branch, take at most 3.
+TEST(PseudoArclength, TheStartMayTakeMoreIterationsThanTheSteps) {
+  const ArctanFamily family;
+  ArclengthOptions o = toy_options();
+  o.parameter_min = -1.0;
+  o.parameter_max = 1.0;
+  o.max_corrector_iterations = 3;
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 1.3);
+  const Eigen::VectorXd along_state = Eigen::VectorXd::Zero(1);
+  const BranchTrace short_start = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o);
+  EXPECT_FALSE(short_start.start_converged);
+  o.start_corrector_iterations = 15;
+  std::vector<BranchSample> samples;
+  const BranchTrace t = trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o,
+                                           [&](const BranchSample& s) { samples.push_back(s); });
+  ASSERT_TRUE(t.start_converged) << t.message;
+  EXPECT_TRUE(t.reached_bound) << t.message;
+  ASSERT_GT(samples.size(), 5u);
+  EXPECT_GT(samples.front().corrector_iterations, 3);
+  EXPECT_NEAR(samples.front().x(0), 0.0, 1e-12);
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    EXPECT_LE(samples[i].corrector_iterations, 3);
+    EXPECT_NEAR(samples[i].x(0), std::tan(samples[i].parameter), 1e-10);
+  }
+  o.start_corrector_iterations = -1;
+  EXPECT_THROW(trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o), std::invalid_argument);
+  o.start_corrector_iterations = 0;
+  o.max_corrector_iterations = 0;
+  EXPECT_THROW(trace_branch_along(family, x0, 0.0, along_state, 1.0, {}, o), std::invalid_argument);
+}
+
+// ArclengthOptions::accept_step: a converged step it rejects fails and is halved, so every
+// accepted step passes it (here: lambda moves by at most 0.02, a tenth of the largest step's
+// reach); the trace still runs round both folds of the S-curve to its bound, on the curve.
+// A test that throws std::runtime_error rejects the step: the trace then ends at min_step.
+TEST(PseudoArclength, StepsTheCallerRejectsAreHalved) {
+  ToyFamily family(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5, lambda0 = y0 * y0 * y0 - y0;
+  const Eigen::VectorXd start = family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0));
+  ArclengthOptions o = toy_options();
+  int calls = 0;
+  o.accept_step = [&calls](const BranchSample& from, const BranchSample& to) {
+    ++calls;
+    return std::abs(to.parameter - from.parameter) <= 0.02;
+  };
+  std::vector<BranchSample> samples;
+  const BranchTrace t = trace_branch(family, start, -lambda0, -1, {}, o,
+                                     [&](const BranchSample& s) { samples.push_back(s); });
+  EXPECT_TRUE(t.reached_bound) << t.message;
+  EXPECT_GT(t.cost.rejected_steps, 0);
+  EXPECT_GE(t.failed_steps, t.cost.rejected_steps);
+  EXPECT_EQ(t.special_points.size(), 2u);  // both folds
+  EXPECT_GE(calls, t.steps);
+  ASSERT_GT(samples.size(), 10u);
+  for (std::size_t i = 1; i < samples.size(); ++i)
+    EXPECT_LE(std::abs(samples[i].parameter - samples[i - 1].parameter), 0.02 + 1e-12)
+        << "sample " << i;
+  const BranchTrace unchecked = trace_branch(family, start, -lambda0, -1, {}, toy_options());
+  EXPECT_LT(unchecked.steps, t.steps);
+
+  o.accept_step = [](const BranchSample& from, const BranchSample&) {
+    if (from.parameter > 0.0) throw std::runtime_error("no measure here");
+    return true;
+  };
+  const BranchTrace thrown = trace_branch(family, start, -lambda0, -1, {}, o);
+  EXPECT_FALSE(thrown.reached_bound);
+  EXPECT_NE(thrown.message.find("step below min_step"), std::string::npos) << thrown.message;
+  EXPECT_GT(thrown.cost.rejected_steps, 0);
+}
+
 /// E(x; lambda) = w F((x - sin(lambda)) / w) with F'(u) = u for |u| <= 1 and sign(u) (1 +
 /// eps (|u| - 1)) outside: the branch is x = sin(lambda). Inside the band |u| <= 1 the
 /// gradient is linear, so Newton converges in one update; outside it the slope is eps and the
