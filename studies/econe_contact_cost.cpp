@@ -27,6 +27,7 @@ Json trace_fields(const EconeTraceWork& w, bool named) {
   j["steps"] = steps;
   j["failed_steps"] = w.failed_steps;
   j["stalled_correctors"] = t.stalled_correctors;
+  j["rejected_steps"] = t.rejected_steps;
   j["segments"] = c.segments;
   j["linearizations"] = t.linearizations;
   j["factorizations"] = t.factorizations;

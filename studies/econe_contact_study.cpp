@@ -73,6 +73,24 @@ Scene compared_mode_scene(const Scene& scene, int n) {
 /// skewed samples and the orientation warning.
 bool breaks_s4(double defect, double threshold) { return defect > threshold && defect < 0.5; }
 
+/// A step test (ArclengthOptions::accept_step) for the traces of a cone that breaks S4: a step
+/// whose end has no measurable S4 defect, or one a thousandth of its start's or less, has
+/// snapped onto another branch (the S4-symmetric cone; measured: from 4e-3 to 2e-9 in one step
+/// next to the turned cone's fold at h = 0.04), not followed this one, whose defect changes
+/// by a few per cent a step.
+std::function<bool(const BranchSample&, const BranchSample&)> s4_breaking_step(
+    const ShellModel& model) {
+  return [&model](const BranchSample& from, const BranchSample& to) {
+    try {
+      const double after = measure_cone_symmetry(model, to.x).s4.defect;
+      if (!(after < 0.5)) return false;
+      return after >= 1e-3 * measure_cone_symmetry(model, from.x).s4.defect;
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+}
+
 std::string fixed(double v, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << v;
@@ -119,6 +137,16 @@ class EconeContactRun {
   void mark_incomplete(const std::string& why) {
     results_.end = results_.completed ? why : results_.end + "; " + why;
     results_.completed = false;
+  }
+  /// Adds `why` to results.json's end as a note: "completed (why)", or to the notes there
+  /// ("completed (...; why)"), or to the reasons of an incomplete study.
+  void add_note(const std::string& why) {
+    if (!results_.completed)
+      results_.end += "; " + why;
+    else if (results_.end == "completed")
+      results_.end = "completed (" + why + ")";
+    else
+      results_.end.insert(results_.end.size() - 1, "; " + why);
   }
   std::vector<BranchStateSample> skewed_samples() const;
   /// The phi_e of the skewed branch's special points (where its stability changes).
@@ -261,8 +289,11 @@ void EconeContactRun::set_up_contact() {
   c.arclength.gradient_tolerance = st.tolerance * model_->natural_force_scale();
   c.arclength.max_tangent_angle = 0.5;
   c.arclength.corrector = scene_arclength_corrector(scene_);
-  // Opt-in: they change the step sequence, and with it the route of the downward traces
-  // through the skewed and turned cones' branch points (docs/performance.md).
+  // A corrector that needs more iterations converges, next to the skewed and turned cones'
+  // folds, onto another branch (docs/performance.md, "Failed steps of the traces with contact").
+  c.arclength.max_corrector_iterations = st.contact_max_corrector_iterations;
+  // A segment's start (the last sample on a rebuilt pair set) keeps the continuation's default.
+  c.arclength.start_corrector_iterations = ArclengthOptions{}.max_corrector_iterations;
   c.arclength.stall_iterations = st.contact_stall_iterations;
   c.arclength.growth_pause_after_failure = st.contact_growth_pause;
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
@@ -306,6 +337,10 @@ void EconeContactRun::set_up_contact() {
   options_.symmetric_end = scene_.continuation.phi_max;
   options_.skewed_end = scene_.continuation.phi_max;
   options_.skewed_start = SkewedStart::Top;
+  // Down to its fold, where the skewed cone ends: what lies beyond is unstable and not needed
+  // for phi_e^crit (docs/performance.md, "Branch jumps and the step control").
+  options_.skewed_down_ends_at_fold = true;
+  options_.skewed_accept_step = s4_breaking_step(*model_);
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
   options_.skew_search_at = st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
@@ -733,14 +768,22 @@ void EconeContactRun::trace_turned() {
   if (!from_record) save_stages();
   t.lowest_phi_breaking_s4 = traced.lowest_phi_breaking_s4;
   t.end = "downwards: " + traced.down.message + "; upwards: " + traced.up.message;
-  // A trace that ended before its bound leaves the study incomplete, as the other stages do.
+  measure_turned(std::move(t));
+  // A trace that ended before its bound leaves the study incomplete, as the other stages do,
+  // but for a downward one that ended below the skewed cone's lowest sample: it is there as the
+  // skewed cone's reference, and had done that (e.g. stalled at its fold, 5.294 at h = 0.02).
+  const std::optional<double> lowest = results_.turned->lowest_phi;
+  const bool down_covers_skewed =
+      results_.skewed_lowest_phi && lowest && *lowest <= *results_.skewed_lowest_phi;
   for (const auto& [name, trace] :
        {std::pair{"downwards", &traced.down}, std::pair{"upwards", &traced.up}}) {
     if (trace->reached_bound) continue;
     const std::string why = std::string("turned branch ") + name + ": " + trace->message;
-    mark_incomplete(why);
+    if (std::string(name) == "downwards" && down_covers_skewed)
+      add_note(why);
+    else
+      mark_incomplete(why);
   }
-  measure_turned(std::move(t));
 }
 
 /// Stage 5's two traces from the turned state at phi0, into DIR/turned (a fresh record).
@@ -758,6 +801,7 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   o.arclength.parameter_min = options_.skewed_min;
   o.arclength.parameter_max = options_.symmetric_end;
   o.arclength.max_steps = options_.max_steps_per_branch;
+  o.arclength.accept_step = s4_breaking_step(*model_);
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
   const double threshold = scene_.study.symmetry_threshold;
   EconeStageRecord::Turned t;
@@ -779,9 +823,13 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   // (a pitchfork on the turned cone, 5.27 at h = 0.04) the downward trace goes on down the
   // S4-symmetric cone, or, with other step lengths, turns back up it, unstable: samples of
   // another branch above the turned cone's, which the comparisons below would read as its own.
+  // The downward trace also ends at its first loss of stability, as the skewed cone's does:
+  // at h = 0.04 that is the fold (index 0 -> 1) where the trace turns back.
+  ContactBranchOptions down_options = o;
+  down_options.arclength.max_special_points = 1;
   const ContactBranchTrace down =
-      trace_contact_branch(*model_, *proxy_, turned_start_, phi0, no_direction, -1.0, pins, o,
-                           on_sample, on_special, {turning_back_event(-1)});
+      trace_contact_branch(*model_, *proxy_, turned_start_, phi0, no_direction, -1.0, pins,
+                           down_options, on_sample, on_special, {turning_back_event(-1)});
   say("# turned branch, downwards: " + down.message);
   count_trace("turned_down", down);
   skip_start = turned_->rows() > 0;
@@ -829,9 +877,13 @@ void EconeContactRun::measure_turned(EconeTurnedBranch t) {
     t.top_s4_defect = turned_->value(top, "s4_defect");
     t.top_gamma = turned_->value(top, "gamma");
   }
-  // Its first loss of stability by increasing phi_e: the special point between the last stable
-  // and the first unstable sample (that sample if none was located).
+  // Its first loss of stability by increasing phi_e above its start: the special point between
+  // the last stable and the first unstable sample (that sample if none was located). Below the
+  // start the downward trace is stable down to its first special point, where it ends: the
+  // sample just past that point (past a fold, on its unstable half) is no loss by increasing
+  // phi_e.
   for (std::size_t k = 1; k < turned.size() && !t.phi_crit_stability; ++k) {
+    if (turned[k - 1].phi_e < t.start_phi) continue;
     if (!(turned[k - 1].negative == 0 && turned[k].negative > 0)) continue;
     t.phi_crit_stability = turned[k].phi_e;
     for (const RecordedEvent& e : turned_->events())

@@ -408,6 +408,9 @@ const Field kFields[] = {
   {"study.contact_max_step",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_max_step = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.contact_max_step); }},
+  {"study.contact_max_corrector_iterations",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_max_corrector_iterations = read_int(v, k); },
+   [](const Scene& s) { return Json(s.study.contact_max_corrector_iterations); }},
   {"study.contact_stall_iterations",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_stall_iterations = read_int(v, k); },
    [](const Scene& s) { return Json(s.study.contact_stall_iterations); }},
@@ -689,6 +692,8 @@ void validate_scene(const Scene& scene) {
     fail("study.orientation_check_at measures the two-fold cone's S4 symmetry: it needs "
          "continuation.mode = 2 (got " + std::to_string(scene.continuation.mode) + ")");
   require_positive(st.contact_max_step, "study.contact_max_step");
+  require_at_least(st.contact_max_corrector_iterations, 1,
+                   "study.contact_max_corrector_iterations");
   require_at_least(st.contact_stall_iterations, 0, "study.contact_stall_iterations");
   require_at_least(st.contact_growth_pause, 0, "study.contact_growth_pause");
   require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");

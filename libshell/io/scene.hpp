@@ -285,6 +285,11 @@ struct SceneStudy {
   std::optional<double> skew_search_at;
   /// econe_contact only: the largest arclength step of the branches with contact (> 0).
   double contact_max_step = 0.02;
+  /// econe_contact only: a corrector of a branch with contact that has not converged in this
+  /// many iterations fails, and its step is halved (ArclengthOptions::max_corrector_iterations;
+  /// >= 1). Next to the skewed and turned cones' folds a corrector that needs more converges
+  /// onto another branch, a snap that the trace would then follow (docs/continuation.md).
+  int contact_max_corrector_iterations = 8;
   /// econe_contact only: the branches with contact give a Newton corrector up after this many
   /// iterations if its residual has not fallen to a tenth (ArclengthOptions::stall_iterations;
   /// >= 0, 0 = off: max_corrector_iterations only).

@@ -15,6 +15,7 @@
 #include "solvers/contact/contact_growth_path.hpp"
 #include "solvers/contact/penalty_warm_start.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
+#include "solvers/continuation/turning_back_event.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
 
@@ -149,6 +150,7 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
       std::isnan(options.skewed_min) ? phi0 - 1.0 : options.skewed_min;
   skewed_options.arclength.parameter_max = options.skewed_end;
   skewed_options.arclength.max_steps = options.max_steps_per_branch;
+  if (options.skewed_accept_step) skewed_options.arclength.accept_step = options.skewed_accept_step;
   std::optional<double> entered_at;  // branch point the skewed branch was entered at
   if (!options.trace_skewed) {
     out.skewed_message = "not traced (trace_skewed = false)";
@@ -259,12 +261,16 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
           note(mismatch);
       }
       // Downwards until the branch ends at a fold; the part beyond it comes back up, and the
-      // trace stops when that part reaches the relaxed state's phi_e again.
+      // trace stops when that part reaches the relaxed state's phi_e again (or, with
+      // skewed_down_ends_at_fold, at the fold).
       ContactBranchOptions down_options = skewed_options;
       down_options.arclength.parameter_max = top.parameter;
+      std::vector<BranchEvent> down_events;
+      if (options.skewed_down_ends_at_fold) down_events.push_back(turning_back_event(-1));
       out.skewed_down = trace_contact_branch(
           model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0, pins,
-          down_options, on_skewed_sample(down_energy, down_negative), on_skewed_special);
+          down_options, on_skewed_sample(down_energy, down_negative), on_skewed_special,
+          down_events);
       note("skewed branch, downwards: " + out.skewed_down.message);
       if (options.skewed_end > top.parameter) {
         out.skewed_up = trace_contact_branch(

@@ -53,6 +53,18 @@ struct EconeBranchOptions {
   /// contact a whole radian below first contact.
   double skewed_min = std::numeric_limits<double>::quiet_NaN();
   int max_steps_per_branch = 600;
+  /// The downward skewed trace ends where phi_e turns back (turning_back_event): at the fold
+  /// where the skewed cone, going down, ends. Next to that fold the corrector can converge onto
+  /// another branch (a snap the trace would then follow under the skewed cone's name), and the
+  /// unstable part beyond it is not needed for phi_e^crit. false (default): down to
+  /// skewed_min, round the fold and back up to the start's phi_e. (Not at its first special
+  /// point: on the paper's scene the skewed cone's index flips on a small margin at 6.27 in
+  /// some runs, above its crossing with the symmetric branch.)
+  bool skewed_down_ends_at_fold = false;
+  /// If set, the skewed branch's traces take only the steps it accepts
+  /// (ArclengthOptions::accept_step): e.g. no step that lands on a state keeping S4, the
+  /// symmetric cone the corrector can snap onto next to the skewed cone's fold.
+  std::function<bool(const BranchSample& from, const BranchSample& to)> skewed_accept_step;
   /// If set (e.g. half_turn_subspace), the skewed branch is traced in it from a relaxed state
   /// that has its symmetry to a tenth of the contact distance in some frame; from one that
   /// has not, in the full space, with a note. The stability index stays the full Hessian's.

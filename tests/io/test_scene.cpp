@@ -956,23 +956,31 @@ TEST(Scene, HardContactBranchesNameTracedBranchesOnceEach) {
             std::string::npos);
 }
 
-TEST(Scene, ContactStepControlKeysAreOffByDefaultAndNegativeCountsRefused) {
+TEST(Scene, ContactStepControlKeysHaveTheirDefaultsAndBadCountsAreRefused) {
+  EXPECT_EQ(default_scene().study.contact_max_corrector_iterations, 8);
   EXPECT_EQ(default_scene().study.contact_stall_iterations, 0);
   EXPECT_EQ(default_scene().study.contact_growth_pause, 0);
   const Scene s = parse_scene(
       R"({"study": {"kind": "econe_contact", "contact_stall_iterations": 8,
-                    "contact_growth_pause": 6}})",
+                    "contact_growth_pause": 3, "contact_max_corrector_iterations": 12}})",
       "test");
+  EXPECT_EQ(s.study.contact_max_corrector_iterations, 12);
   EXPECT_EQ(s.study.contact_stall_iterations, 8);
-  EXPECT_EQ(s.study.contact_growth_pause, 6);
+  EXPECT_EQ(s.study.contact_growth_pause, 3);
   const Scene back = parse_scene(scene_to_json(s), "round trip");
   EXPECT_EQ(back.study.contact_stall_iterations, 8);
-  EXPECT_EQ(back.study.contact_growth_pause, 6);
+  EXPECT_EQ(back.study.contact_growth_pause, 3);
+  EXPECT_EQ(back.study.contact_max_corrector_iterations, 12);
   using test_support::error_of;
   const auto parse = [](const std::string& text) { return [text] { parse_scene(text, "t"); }; };
   EXPECT_NE(
       error_of(parse(R"({"study": {"kind": "econe_contact", "contact_stall_iterations": -1}})"))
           .find("study.contact_stall_iterations"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(
+          parse(R"({"study": {"kind": "econe_contact", "contact_max_corrector_iterations": 0}})"))
+          .find("study.contact_max_corrector_iterations"),
       std::string::npos);
   EXPECT_NE(error_of(parse(R"({"study": {"kind": "econe_contact", "contact_growth_pause": -2}})"))
                 .find("study.contact_growth_pause"),

@@ -215,6 +215,9 @@ TEST(EconeStageKey, ChangesWithWhatStagesTwoToSixDependOnAndWithNothingElse) {
   s = scene;
   s.study.contact_growth_pause = 6;
   EXPECT_NE(econe_stage_key(s, start), key);
+  s = scene;
+  s.study.contact_max_corrector_iterations = 15;
+  EXPECT_NE(econe_stage_key(s, start), key);
 
   // Keys they do not: the output and the stages after 6; hard_contact_at goes point by point.
   s = scene;
