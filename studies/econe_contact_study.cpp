@@ -771,7 +771,7 @@ void EconeContactRun::trace_turned() {
   measure_turned(std::move(t));
   // A trace that ended before its bound leaves the study incomplete, as the other stages do,
   // but for a downward one that ended below the skewed cone's lowest sample: it is there as the
-  // skewed cone's reference, and had done that (e.g. stalled at its fold, 5.294 at h = 0.02).
+  // skewed cone's reference, and had done that (e.g. stalled next to its fold).
   const std::optional<double> lowest = results_.turned->lowest_phi;
   const bool down_covers_skewed =
       results_.skewed_lowest_phi && lowest && *lowest <= *results_.skewed_lowest_phi;
