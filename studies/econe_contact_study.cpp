@@ -13,6 +13,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/analysis/contact_zones.hpp"
@@ -77,14 +78,24 @@ bool breaks_s4(double defect, double threshold) { return defect > threshold && d
 /// whose end has no measurable S4 defect, or one a thousandth of its start's or less, has
 /// snapped onto another branch (the S4-symmetric cone; measured: from 4e-3 to 2e-9 in one step
 /// next to the turned cone's fold at h = 0.04), not followed this one, whose defect changes
-/// by a few per cent a step.
+/// by a few per cent a step. A step's start is mostly the last step's end, whose defect is kept
+/// (a measure costs 0.5 s on a Gmsh disc, docs/performance.md).
 std::function<bool(const BranchSample&, const BranchSample&)> s4_breaking_step(
     const ShellModel& model) {
-  return [&model](const BranchSample& from, const BranchSample& to) {
+  struct Measured {
+    Eigen::VectorXd x;
+    double defect = 0.0;
+  };
+  auto last = std::make_shared<Measured>();
+  return [&model, last](const BranchSample& from, const BranchSample& to) {
     try {
-      const double after = measure_cone_symmetry(model, to.x).s4.defect;
+      const Measured previous =
+          std::exchange(*last, Measured{to.x, measure_cone_symmetry(model, to.x).s4.defect});
+      const double after = last->defect;
       if (!(after < 0.5)) return false;
-      return after >= 1e-3 * measure_cone_symmetry(model, from.x).s4.defect;
+      const bool known = previous.x.size() == from.x.size() && previous.x == from.x;
+      return after >=
+             1e-3 * (known ? previous.defect : measure_cone_symmetry(model, from.x).s4.defect);
     } catch (const std::exception&) {
       return false;
     }
@@ -819,12 +830,11 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   };
   const auto on_special = [&](const SpecialPoint& sp) { record_special("turned", *turned_, sp); };
   const Eigen::VectorXd no_direction = Eigen::VectorXd::Zero(model_->dimension());
-  // Each trace ends where phi_e turns back. Where the turned cone's S4-breaking core is born
-  // (a pitchfork on the turned cone, 5.27 at h = 0.04) the downward trace goes on down the
-  // S4-symmetric cone, or, with other step lengths, turns back up it, unstable: samples of
-  // another branch above the turned cone's, which the comparisons below would read as its own.
-  // The downward trace also ends at its first loss of stability, as the skewed cone's does:
-  // at h = 0.04 that is the fold (index 0 -> 1) where the trace turns back.
+  // Each trace ends where phi_e turns back, and the downward one also at its first special
+  // point: going down, the turned cone ends at a fold (index 0 -> 1, 5.2651 at h = 0.04). Past
+  // it lie its unstable half and, a corrector's snap away, the S4-symmetric cone: samples of
+  // other branches, which the comparisons below would read as the turned cone's
+  // (docs/performance.md, "Branch jumps and the step control").
   ContactBranchOptions down_options = o;
   down_options.arclength.max_special_points = 1;
   const ContactBranchTrace down =

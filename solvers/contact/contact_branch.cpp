@@ -251,12 +251,11 @@ ContactBranchTrace trace_contact_branch(
           sp.bracket_width = std::abs(s.parameter - out.last.sample.parameter);
           out.special_points.push_back(sp);
           if (on_special) on_special(sp);
-          out.last.sample = s;
-          if (arc.max_special_points > 0 &&
-              static_cast<int>(out.special_points.size()) >= arc.max_special_points)
-            throw SpecialPointLimit{};
         }
         out.last.sample = s;
+        if (arc.max_special_points > 0 &&
+            static_cast<int>(out.special_points.size()) >= arc.max_special_points)
+          throw SpecialPointLimit{};
         return;
       }
       auto td = Clock::now();
