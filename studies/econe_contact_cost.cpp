@@ -28,6 +28,7 @@ Json trace_fields(const EconeTraceWork& w, bool named) {
   j["failed_steps"] = w.failed_steps;
   j["stalled_correctors"] = t.stalled_correctors;
   j["rejected_steps"] = t.rejected_steps;
+  j["tangent_angle_rejections"] = t.tangent_angle_rejections;
   j["segments"] = c.segments;
   j["linearizations"] = t.linearizations;
   j["factorizations"] = t.factorizations;

@@ -48,7 +48,7 @@ struct EconeContactCost {
 EconeTraceWork all_traces(const EconeContactCost& cost);
 
 /// contact_cost.json's text: {"traces": [{trace, steps, failed_steps, stalled_correctors,
-/// rejected_steps, segments,
+/// rejected_steps, tangent_angle_rejections, segments,
 /// linearizations, factorizations, factorizations_per_step, stability_evaluations,
 /// stability_evaluations_per_step, assembly_seconds, factorization_seconds, stability_seconds,
 /// pair_search_seconds, sample_seconds, total_seconds, rebuilds_after_violation,

@@ -59,6 +59,12 @@ const std::vector<std::string> kColumns = {"phi_e",         "E_stretch",
 
 constexpr const char* kConeDir = "cone";
 
+/// How close in phi_e the downward traces of the skewed and turned cones end before their
+/// folds once a step fails there (ArclengthOptions::fold_approach_tolerance). Next to these
+/// folds the correctors fail at any step length, and without it each fold cost a halving
+/// down to the minimum step (docs/performance.md, "Folds approached").
+constexpr double kFoldApproachTolerance = 1e-4;
+
 /// The cone_branch study of stage 7 for the n-fold cone: stage 1's, with mode n, in DIR/cone_nN.
 Scene compared_mode_scene(const Scene& scene, int n) {
   Scene mode = econe_contact_cone_scene(scene);
@@ -307,6 +313,9 @@ void EconeContactRun::set_up_contact() {
   c.arclength.start_corrector_iterations = ArclengthOptions{}.max_corrector_iterations;
   c.arclength.stall_iterations = st.contact_stall_iterations;
   c.arclength.growth_pause_after_failure = st.contact_growth_pause;
+  // Every triangle near a vertex (as the winding's), or its nearest where the set is built.
+  c.selection.nearest_triangle_only =
+      st.contact_vertex_triangles == SceneContactVertexTriangles::NearestAtBuild;
   // The penalty's Hessian jumps where a pair enters contact, so the tangent may turn by a
   // finite angle over any step: short steps are accepted on a converged corrector alone.
   c.arclength.angle_test_max_step = 0.02 * st.contact_max_step;
@@ -351,6 +360,7 @@ void EconeContactRun::set_up_contact() {
   // Down to its fold, where the skewed cone ends: what lies beyond is unstable and not needed
   // for phi_e^crit (docs/performance.md, "Branch jumps and the step control").
   options_.skewed_down_ends_at_fold = true;
+  options_.skewed_fold_approach_tolerance = kFoldApproachTolerance;
   options_.skewed_accept_step = s4_breaking_step(*model_);
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
@@ -837,6 +847,7 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   // (docs/performance.md, "Branch jumps and the step control").
   ContactBranchOptions down_options = o;
   down_options.arclength.max_special_points = 1;
+  down_options.arclength.fold_approach_tolerance = kFoldApproachTolerance;
   const ContactBranchTrace down =
       trace_contact_branch(*model_, *proxy_, turned_start_, phi0, no_direction, -1.0, pins,
                            down_options, on_sample, on_special, {turning_back_event(-1)});

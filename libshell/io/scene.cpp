@@ -75,6 +75,9 @@ const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
 const NameTable<SceneCorrector> kCorrectorNames = {{SceneCorrector::Newton, "newton"},
                                                    {SceneCorrector::Chord, "chord"}};
+const NameTable<SceneContactVertexTriangles> kContactVertexTriangleNames = {
+    {SceneContactVertexTriangles::NearestAtBuild, "nearest_at_build"},
+    {SceneContactVertexTriangles::EveryNearTriangle, "every_near_triangle"}};
 const NameTable<StudyKind> kStudyKindNames = {{StudyKind::ConeBranch, "cone_branch"},
                                               {StudyKind::ThicknessSeries, "thickness_series"},
                                               {StudyKind::EconeContact, "econe_contact"},
@@ -417,6 +420,9 @@ const Field kFields[] = {
   {"study.contact_growth_pause",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_growth_pause = read_int(v, k); },
    [](const Scene& s) { return Json(s.study.contact_growth_pause); }},
+  {"study.contact_vertex_triangles",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_vertex_triangles = read_enum(v, k, kContactVertexTriangleNames); },
+   [](const Scene& s) { return Json(enum_name(kContactVertexTriangleNames, s.study.contact_vertex_triangles)); }},
   {"study.penalty_stiffness_factor",
    [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},

@@ -155,6 +155,12 @@ enum class ContinuationDirection {
   Backward,  ///< decreasing phi_e, down to phi_min
 };
 
+/// Which vertex-triangle pairs the contact penalty of a trace holds (docs/contact.md).
+enum class SceneContactVertexTriangles {
+  NearestAtBuild,     ///< per vertex the triangle nearest where the segment's set was built
+  EveryNearTriangle,  ///< every triangle near the vertex, each a pair of the penalty
+};
+
 /// The corrector of pseudo-arclength continuation (ArclengthOptions::Corrector).
 enum class SceneCorrector {
   Newton,  ///< a Hessian factorisation per corrector iteration
@@ -297,6 +303,9 @@ struct SceneStudy {
   /// econe_contact only: after a failed step of a branch with contact, this many accepted
   /// steps keep their length (ArclengthOptions::growth_pause_after_failure; >= 0, 0 = off).
   int contact_growth_pause = 0;
+  /// econe_contact only: which vertex-triangle pairs the traces' penalty holds.
+  SceneContactVertexTriangles contact_vertex_triangles =
+      SceneContactVertexTriangles::NearestAtBuild;
   /// econe_contact only: the penalty stiffness k = F Y l^2 / h, l the contact proxy's spacing
   /// (docs/contact.md, "Penalty stiffness"); this is F (> 0).
   double penalty_stiffness_factor = 10.0;

@@ -90,15 +90,21 @@ ContactBranchSample describe(const ShellModel& model, ContactPenalty* penalty,
   return out;
 }
 
-/// True if every pair of `close` is covered by `pairs`: a vertex-triangle pair by any pair of
-/// the same proxy vertex (the nearest triangle is re-chosen at every rebuild), an edge-edge pair
-/// by itself.
-bool covered(const ContactCandidates& close, const ContactCandidates& pairs) {
+/// True if every pair of `close` is covered by `pairs`: a vertex-triangle pair by itself if
+/// `same_triangle` (sets of every near triangle), else by any pair of the same proxy vertex
+/// (sets of the nearest triangle, which is re-chosen at every rebuild); an edge-edge pair by
+/// itself.
+bool covered(const ContactCandidates& close, const ContactCandidates& pairs, bool same_triangle) {
+  std::set<std::pair<int, int>> vertex_triangles;
   std::set<int> vertices;
-  for (Eigen::Index i = 0; i < pairs.vertex_triangle.rows(); ++i)
+  for (Eigen::Index i = 0; i < pairs.vertex_triangle.rows(); ++i) {
     vertices.insert(pairs.vertex_triangle(i, 0));
-  for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i)
-    if (!vertices.count(close.vertex_triangle(i, 0))) return false;
+    vertex_triangles.insert({pairs.vertex_triangle(i, 0), pairs.vertex_triangle(i, 1)});
+  }
+  for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i) {
+    const int v = close.vertex_triangle(i, 0), t = close.vertex_triangle(i, 1);
+    if (same_triangle ? !vertex_triangles.count({v, t}) : !vertices.count(v)) return false;
+  }
   std::set<std::pair<int, int>> edges;
   for (Eigen::Index i = 0; i < pairs.edge_edge.rows(); ++i)
     edges.insert({pairs.edge_edge(i, 0), pairs.edge_edge(i, 1)});
@@ -172,6 +178,9 @@ ContactBranchTrace trace_contact_branch(
   // The step control's growth pause after a failed step (ArclengthOptions::
   // growth_pause_after_failure), carried from segment to segment.
   int growth_pause = arc.initial_growth_pause;
+  // A set of every near triangle must hold a sample's close pairs themselves, not just a pair
+  // of the same vertex.
+  const bool exact_cover = !options.selection.nearest_triangle_only;
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
@@ -222,7 +231,7 @@ ContactBranchTrace trace_contact_branch(
           near_contact_pairs(proxy, s.x, options.contact_distance - options.violation_tolerance,
                              options.exclusion_radius, options.selection);
       out.cost.pair_search_seconds += seconds_since(tc);
-      if (!covered(close, pairs)) throw PairSetViolation{};
+      if (!covered(close, pairs, exact_cover)) throw PairSetViolation{};
       const bool is_start = samples_in_segment++ == 0;
       if (!is_start) {
         last_step = s.arclength - previous_arclength;
@@ -366,6 +375,8 @@ ContactBranchTrace trace_contact_branch(
     if (trace.reached_bound && trace.message != "reached max_steps") {
       out.reached_bound = true;
       out.message = trace.message;
+      out.approached_fold = trace.approached_fold;
+      out.fold_parameter = trace.fold_parameter;
       break;
     }
     if (trace.message != "reached max_steps") {

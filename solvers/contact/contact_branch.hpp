@@ -45,6 +45,8 @@ struct ContactBranchOptions {
   double candidate_margin = 0.0;
   double stiffness = 0.0;  ///< penalty stiffness k (N/m), > 0
   /// Which near pairs enter (default as the Ipopt solve: vertex-triangle, nearest triangle).
+  /// Without nearest_triangle_only a sample's close pairs must be in the set themselves (with
+  /// it, any pair of the same vertex covers a vertex-triangle pair).
   NearPairSelection selection{false, true};
   int steps_per_segment = 6;  ///< steps before the pair set is rebuilt, >= 1
   /// If > 0, fixed_dofs must be the six rigid-motion pins (rigid_motion_pinned_dofs): a
@@ -162,6 +164,10 @@ struct ContactBranchTrace {
   std::string message;  ///< why the trace ended
   int steps = 0;
   int failed_steps = 0;
+  /// The trace ended next to a fold (ArclengthOptions::fold_approach_tolerance), extrapolated
+  /// to lie at fold_parameter.
+  bool approached_fold = false;
+  double fold_parameter = 0.0;
   ContactBranchCost cost;
 };
 

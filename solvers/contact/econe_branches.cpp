@@ -49,6 +49,8 @@ void validate(const EconeBranchOptions& o) {
     throw std::invalid_argument("EconeBranchOptions::energy_margin must be finite and >= 0");
   if (o.max_steps_per_branch < 1)
     throw std::invalid_argument("EconeBranchOptions::max_steps_per_branch must be >= 1");
+  if (!(o.skewed_fold_approach_tolerance >= 0.0))
+    throw std::invalid_argument("EconeBranchOptions::skewed_fold_approach_tolerance must be >= 0");
   if (!(o.tangency_exclusion >= 0.0))
     throw std::invalid_argument("EconeBranchOptions::tangency_exclusion must be >= 0");
   if (!(o.coincidence_slope_ratio >= 0.0 && o.coincidence_slope_ratio < 1.0))
@@ -266,7 +268,10 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
       ContactBranchOptions down_options = skewed_options;
       down_options.arclength.parameter_max = top.parameter;
       std::vector<BranchEvent> down_events;
-      if (options.skewed_down_ends_at_fold) down_events.push_back(turning_back_event(-1));
+      if (options.skewed_down_ends_at_fold) {
+        down_events.push_back(turning_back_event(-1));
+        down_options.arclength.fold_approach_tolerance = options.skewed_fold_approach_tolerance;
+      }
       out.skewed_down = trace_contact_branch(
           model, proxy, best, top.parameter, Eigen::VectorXd::Zero(model.dimension()), -1.0, pins,
           down_options, on_skewed_sample(down_energy, down_negative), on_skewed_special,

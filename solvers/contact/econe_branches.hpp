@@ -61,6 +61,10 @@ struct EconeBranchOptions {
   /// point: on the paper's scene the skewed cone's index flips on a small margin at 6.27 in
   /// some runs, above its crossing with the symmetric branch.)
   bool skewed_down_ends_at_fold = false;
+  /// With skewed_down_ends_at_fold: the downward trace also ends once its fold, extrapolated
+  /// from its last two samples, lies this close in phi_e after a failed step
+  /// (ArclengthOptions::fold_approach_tolerance; 0: only at min_step).
+  double skewed_fold_approach_tolerance = 0.0;
   /// If set, the skewed branch's traces take only the steps it accepts
   /// (ArclengthOptions::accept_step): e.g. no step that lands on a state keeping S4, the
   /// symmetric cone the corrector can snap onto next to the skewed cone's fold.

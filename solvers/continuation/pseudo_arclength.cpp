@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "solvers/newton/fixed_dof_elimination.hpp"
@@ -348,6 +351,21 @@ double next_step_after(double step, double factor, const ArclengthOptions& optio
   return std::min(options.max_step, step * factor);
 }
 
+/// The fold ahead of `last`, extrapolated from dlambda/ds at it and at the sample before it
+/// (at arclength `previous_arclength`, with dlambda/ds `previous_slope`): where dlambda/ds,
+/// taken linear in s, vanishes. None unless |dlambda/ds| falls between the two with its sign
+/// kept (a fold approached, not passed).
+std::optional<double> extrapolated_fold(double previous_arclength, double previous_slope,
+                                        const BranchSample& last) {
+  const double slope = last.tangent_parameter;
+  const double ds = last.arclength - previous_arclength;
+  if (!(ds > 0.0) || !(slope * previous_slope > 0.0) ||
+      !(std::abs(slope) < std::abs(previous_slope)))
+    return std::nullopt;
+  const double curvature = (slope - previous_slope) / ds;  // d2lambda/ds2, opposite to slope
+  return last.parameter - slope * slope / (2.0 * curvature);
+}
+
 /// The trace proper; trace_branch_along wraps it to collect the solver's cost.
 BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen::VectorXd>& x0,
                                double lambda0,
@@ -371,6 +389,8 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     throw std::invalid_argument(
         "ArclengthOptions: max_corrector_iterations must be >= 1 and start_corrector_iterations "
         ">= 0");
+  if (!(options.fold_approach_tolerance >= 0.0))
+    throw std::invalid_argument("ArclengthOptions: fold_approach_tolerance must be >= 0");
   if (options.stall_iterations < 0)
     throw std::invalid_argument("ArclengthOptions: stall_iterations must be >= 0");
   if (!(options.stall_reduction > 0.0 && options.stall_reduction <= 1.0))
@@ -431,6 +451,9 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     --out.growth_pause_left;
     return std::min(factor, 1.0);
   };
+  // The sample before out.last (its arclength and dlambda/ds), for the fold's extrapolation.
+  double previous_arclength = 0.0, previous_tangent_parameter = 0.0;
+  bool have_previous = false;
   while (out.steps < options.max_steps) {
     const BranchSample& p = out.last;
     if (p.parameter < options.parameter_min || p.parameter > options.parameter_max) {
@@ -441,16 +464,33 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     BranchSample next;
     const Eigen::VectorXd xp = p.x + step * p.tangent_state;
     const double lp = p.parameter + step * p.tangent_parameter;
-    const bool ok = solver.correct(xp, lp, p.tangent_state, p.tangent_parameter, next) &&
-                    (step <= options.angle_test_max_step ||
-                     solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
-                                p.tangent_parameter) >= cos_max) &&
-                    step_accepted(p, next);
+    const bool converged = solver.correct(xp, lp, p.tangent_state, p.tangent_parameter, next);
+    const bool kept_direction =
+        converged && (step <= options.angle_test_max_step ||
+                      solver.dot(next.tangent_state, next.tangent_parameter, p.tangent_state,
+                                 p.tangent_parameter) >= cos_max);
+    if (converged && !kept_direction) ++solver.cost().tangent_angle_rejections;
+    const bool ok = kept_direction && step_accepted(p, next);
     // The step control's factor of this step (bisections below correct other points).
     double step_factor = solver.step_factor();
     if (!ok) {
       ++out.failed_steps;
       out.growth_pause_left = options.growth_pause_after_failure;
+      if (options.fold_approach_tolerance > 0.0 && have_previous) {
+        const std::optional<double> fold =
+            extrapolated_fold(previous_arclength, previous_tangent_parameter, p);
+        if (fold && std::abs(*fold - p.parameter) <= options.fold_approach_tolerance) {
+          out.approached_fold = true;
+          out.fold_parameter = *fold;
+          out.reached_bound = true;
+          std::ostringstream m;
+          m << std::setprecision(8) << "approached a fold at parameter " << *fold
+            << " (extrapolated; the last sample lies " << std::setprecision(2)
+            << std::abs(*fold - p.parameter) << " before it)";
+          out.message = m.str();
+          return out;
+        }
+      }
       step /= 2;
       if (step < options.min_step) {
         out.message = "step below min_step at parameter " + std::to_string(p.parameter);
@@ -603,6 +643,9 @@ BranchTrace trace_with_solver(BranchSolver& solver, const Eigen::Ref<const Eigen
     event_values = next_values;
     if (bisected) solver.anchor_chord_at(next);
 
+    previous_arclength = out.last.arclength;
+    previous_tangent_parameter = out.last.tangent_parameter;
+    have_previous = true;
     out.last = std::move(next);
     ++out.steps;
     step = next_step_after(step, paused(step_factor), options);

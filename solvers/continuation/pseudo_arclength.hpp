@@ -95,6 +95,16 @@ struct ArclengthOptions {
   int max_steps = 10000;
   /// End the trace once this many special points were found (0 = no limit).
   int max_special_points = 0;
+  /// A trace meant to end at a fold, whose steps fail next to it (correctors that do not
+  /// converge, or that converge onto another branch and are rejected, past a fold where the
+  /// branch turns sharply), ends there once the fold is this close in lambda, instead of
+  /// halving its step down to min_step. The fold is extrapolated from the last two samples:
+  /// dlambda/ds falling linearly to zero puts it at lambda + t^2 / (2 |dt/ds|), t the last
+  /// sample's dlambda/ds (a regular fold is a parabola in (s, lambda)). Checked after each
+  /// failed step, whatever made the step fail (a tangent that turned too far, too, which steps
+  /// next to any fold may do): for traces that end at the fold anyway. The trace ends with
+  /// BranchTrace::approached_fold. 0 (default): never.
+  double fold_approach_tolerance = 0.0;
   /// If set, the stability index of every corrected point (BranchSample::negative_eigenvalues,
   /// and so where special points lie) is this function of the point (its x and parameter are
   /// set) instead of the negative count of the traced Hessian. Used when tracing in a
@@ -185,6 +195,10 @@ struct TraceCost {
   int stalled_correctors = 0;
   /// Converged steps that ArclengthOptions::accept_step rejected.
   int rejected_steps = 0;
+  /// Converged steps whose tangent turned by more than ArclengthOptions::max_tangent_angle.
+  /// A trace's failed steps are these, the rejected ones, and correctors that did not
+  /// converge.
+  int tangent_angle_rejections = 0;
   double assembly_seconds = 0.0;  ///< family.evaluate (the chord's gradients too) + dg/dlambda
   double factorization_seconds = 0.0;  ///< numeric LDL^T factorisation with its inertia
   double solve_seconds = 0.0;
@@ -206,6 +220,7 @@ struct TraceCost {
     residual_backtracks += other.residual_backtracks;
     stalled_correctors += other.stalled_correctors;
     rejected_steps += other.rejected_steps;
+    tangent_angle_rejections += other.tangent_angle_rejections;
     assembly_seconds += other.assembly_seconds;
     factorization_seconds += other.factorization_seconds;
     solve_seconds += other.solve_seconds;
@@ -232,6 +247,10 @@ struct BranchTrace {
   /// Accepted steps of a growth pause (ArclengthOptions::growth_pause_after_failure) still to
   /// come where the trace ended.
   int growth_pause_left = 0;
+  /// The trace ended next to a fold (ArclengthOptions::fold_approach_tolerance), extrapolated
+  /// to lie at fold_parameter; `last` is the sample before it.
+  bool approached_fold = false;
+  double fold_parameter = 0.0;
   TraceCost cost;  ///< of this call (the branch-point search and events included)
 };
 

@@ -28,6 +28,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -291,6 +292,61 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   EXPECT_LT(error[1], error[0] / 5) << error[0] << " -> " << error[1];
   EXPECT_LT(error[2], error[1] / 5) << error[1] << " -> " << error[2];
   EXPECT_FALSE(samples.front().active_pairs > 0) << "already touching at the start";
+}
+
+// Sets of every near triangle (NearPairSelection::nearest_triangle_only off, as the
+// econe_contact scene key study.contact_vertex_triangles = every_near_triangle sets): through
+// first contact every sample's set holds each vertex-triangle pair closer than the contact
+// distance (every pair that the penalty of all near triangles acts on; a set of the nearest
+// triangle per vertex misses those of the vertex's other triangles), and the penalty is a
+// function of the state alone: on its own set and on a set rebuilt at the sample it is the
+// same to rounding, so a rebuild changes no force.
+TEST(ContactBranch, SetsOfEveryNearTriangleHoldTheClosePairsAndDoNotChangeTheEnergy) {
+  GrownDisc& d = disc();
+  const double phi0 = GrownDisc::kStart;
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.selection = NearPairSelection{false, false};
+  o.arclength.parameter_max = 6.5;
+  o.arclength.max_steps = 60;
+  std::vector<ContactBranchSample> samples;
+  const ContactBranchTrace t = trace_contact_branch(
+      d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) { samples.push_back(s); });
+  EXPECT_TRUE(t.reached_bound) << t.message;
+  ASSERT_GT(samples.size(), 5u);
+  int touching = 0, several_triangles = 0;
+  for (const ContactBranchSample& s : samples) {
+    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH, o.exclusion_radius,
+                                                       NearPairSelection{false, false});
+    for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i) {
+      bool held = false;
+      for (Eigen::Index j = 0; j < s.pairs.vertex_triangle.rows() && !held; ++j)
+        held = s.pairs.vertex_triangle.row(j) == close.vertex_triangle.row(i);
+      EXPECT_TRUE(held) << "at phi_e = " << s.sample.parameter << " the pair ("
+                        << close.vertex_triangle(i, 0) << ", " << close.vertex_triangle(i, 1)
+                        << ") is not in the set";
+    }
+    if (s.active_pairs == 0) continue;
+    ++touching;
+    std::set<int> vertices;
+    for (Eigen::Index j = 0; j < s.pairs.vertex_triangle.rows(); ++j)
+      vertices.insert(s.pairs.vertex_triangle(j, 0));
+    if (static_cast<Eigen::Index>(vertices.size()) < s.pairs.vertex_triangle.rows())
+      ++several_triangles;
+    const ContactCandidates rebuilt = near_contact_pairs(
+        d.proxy, s.sample.x, kH + o.candidate_margin, o.exclusion_radius, o.selection);
+    ContactPenalty own(d.proxy, s.pairs, kH, o.stiffness, d.model.dimension());
+    ContactPenalty fresh(d.proxy, rebuilt, kH, o.stiffness, d.model.dimension());
+    Eigen::VectorXd g_own, g_fresh;
+    const double p_own = own.evaluate(s.sample.x, &g_own, nullptr);
+    const double p_fresh = fresh.evaluate(s.sample.x, &g_fresh, nullptr);
+    EXPECT_NEAR(p_own, p_fresh, 1e-12 * p_own) << "at phi_e = " << s.sample.parameter;
+    EXPECT_LT((g_own - g_fresh).cwiseAbs().maxCoeff(), 1e-12 * g_own.cwiseAbs().maxCoeff())
+        << "at phi_e = " << s.sample.parameter;
+  }
+  EXPECT_GT(touching, 2) << "the folds did not touch below phi_e = 6.5";
+  EXPECT_EQ(several_triangles, touching) << "sets with one triangle per vertex";
 }
 
 // The symmetric branch traced among the states with both mirrors

@@ -458,6 +458,45 @@ TEST(PseudoArclength, StepsTheCallerRejectsAreHalved) {
   EXPECT_GT(thrown.cost.rejected_steps, 0);
 }
 
+// ArclengthOptions::fold_approach_tolerance: a trace whose steps fail past a fold (here every
+// step that lands beyond the S-curve's first fold, at lambda = -2 / (3 sqrt 3), is rejected)
+// halves its step down to min_step without it; with it, it ends at the first failure once the
+// fold extrapolated from the last two samples lies within the tolerance, after fewer failed
+// steps, and the extrapolated fold is closer to the true one than the last sample. (Any step
+// that fails there ends the trace, e.g. one whose tangent turned too far: the option is for
+// traces that end at the fold anyway.)
+TEST(PseudoArclength, AFailedStepNextToAFoldEndsTheTraceThere) {
+  ToyFamily family(ToyFamily::Kind::SCurve, 6);
+  const double y0 = -1.5, lambda0 = y0 * y0 * y0 - y0;
+  const Eigen::VectorXd start = family.equilibrium_from_active(Eigen::VectorXd::Constant(1, y0));
+  const double fold = -2.0 / (3.0 * std::sqrt(3.0)), y_fold = -1.0 / std::sqrt(3.0);
+  ArclengthOptions o = toy_options();
+  o.min_step = 1e-9;
+  o.accept_step = [y_fold](const BranchSample&, const BranchSample& to) {
+    return to.x(0) < y_fold;
+  };
+  const BranchTrace halved = trace_branch(family, start, -lambda0, -1, {}, o);
+  EXPECT_FALSE(halved.approached_fold);
+  EXPECT_NE(halved.message.find("step below min_step"), std::string::npos) << halved.message;
+
+  o.fold_approach_tolerance = 1e-4;
+  const BranchTrace ended = trace_branch(family, start, -lambda0, -1, {}, o);
+  ASSERT_TRUE(ended.approached_fold) << ended.message;
+  EXPECT_TRUE(ended.reached_bound);
+  EXPECT_NE(ended.message.find("approached a fold at parameter"), std::string::npos);
+  EXPECT_TRUE(ended.special_points.empty());
+  EXPECT_LT(ended.last.x(0), y_fold);
+  const double gap = ended.last.parameter - fold;
+  EXPECT_GT(gap, 0.0);
+  EXPECT_LE(gap, 1e-4 + 1e-4);  // the estimate's error on top of the tolerance
+  EXPECT_LT(std::abs(ended.fold_parameter - fold), 0.1 * gap);
+  EXPECT_LT(ended.failed_steps + 10, halved.failed_steps)
+      << ended.failed_steps << " against " << halved.failed_steps;
+
+  o.fold_approach_tolerance = -1e-4;
+  EXPECT_THROW(trace_branch(family, start, -lambda0, -1, {}, o), std::invalid_argument);
+}
+
 /// E(x; lambda) = w F((x - sin(lambda)) / w) with F'(u) = u for |u| <= 1 and sign(u) (1 +
 /// eps (|u| - 1)) outside: the branch is x = sin(lambda). Inside the band |u| <= 1 the
 /// gradient is linear, so Newton converges in one update; outside it the slope is eps and the

@@ -990,6 +990,24 @@ TEST(Scene, ContactStepControlKeysHaveTheirDefaultsAndBadCountsAreRefused) {
             std::string::npos);
 }
 
+TEST(Scene, ContactVertexTrianglesIsReadRoundTripsAndABadNameIsRefused) {
+  EXPECT_EQ(default_scene().study.contact_vertex_triangles,
+            SceneContactVertexTriangles::NearestAtBuild);
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "econe_contact", "contact_vertex_triangles": "every_near_triangle"}})",
+      "test");
+  EXPECT_EQ(s.study.contact_vertex_triangles, SceneContactVertexTriangles::EveryNearTriangle);
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.contact_vertex_triangles,
+            SceneContactVertexTriangles::EveryNearTriangle);
+  using test_support::error_of;
+  const std::string error = error_of([] {
+    parse_scene(R"({"study": {"kind": "econe_contact", "contact_vertex_triangles": "nearest"}})",
+                "t");
+  });
+  EXPECT_NE(error.find("study.contact_vertex_triangles"), std::string::npos) << error;
+  EXPECT_NE(error.find("every_near_triangle"), std::string::npos) << error;
+}
+
 TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
   EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
   const Scene s = parse_scene(

@@ -173,7 +173,7 @@ endforeach()
 # The turned cone's downward trace ends at its first special point (the fold where it loses
 # stability; measured 5.2505 on this mesh) or where phi_e turns back.
 string(JSON turned_end GET "${turned_branch}" end)
-if(NOT turned_end MATCHES "^downwards: (found max_special_points special points|stopped at event 'turns_back');")
+if(NOT turned_end MATCHES "^downwards: (found max_special_points special points|stopped at event 'turns_back'|approached a fold at parameter [0-9.]+ [^;]*);")
   message(FATAL_ERROR "the turned cone's downward trace did not end at its fold: ${turned_end}")
 endif()
 # The turned cone at 7.0 solved again under Ipopt's hard constraints (hard_contact_at): the

@@ -18,6 +18,7 @@ EconeTraceWork work(const std::string& name, int steps, int factorizations, int 
   w.failed_steps = 1;
   w.cost.continuation.stalled_correctors = 1;
   w.cost.continuation.rejected_steps = 3;
+  w.cost.continuation.tangent_angle_rejections = 2;
   w.cost.segments = 2;
   w.cost.pair_search_seconds = 0.5;
   w.cost.continuation.linearizations = factorizations;
@@ -52,6 +53,7 @@ TEST(EconeContactCostJson, EachTraceAndTheirSumWithFactorisationsPerStep) {
   EXPECT_EQ(all["failed_steps"].get<int>(), 2);
   EXPECT_EQ(all["stalled_correctors"].get<int>(), 2);
   EXPECT_EQ(all["rejected_steps"].get<int>(), 6);
+  EXPECT_EQ(all["tangent_angle_rejections"].get<int>(), 4);
   EXPECT_EQ(all["segments"].get<int>(), 4);
   EXPECT_EQ(all["factorizations"].get<int>(), 235);
   EXPECT_EQ(all["factorizations_per_step"].get<double>(), 4.7);
