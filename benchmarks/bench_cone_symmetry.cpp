@@ -1,8 +1,9 @@
 // Cost of the two-fold cone's symmetry measures per sample (measure_cone_symmetry: S4 defect,
 // fold directions and chords) on the default rings disc, whose quarter-turn vertex map gives the
 // S4 images directly, and on the Gmsh disc of the same scene, whose images are found on the exact
-// limit surface (sheet_state_evaluator: a Newton search per material point). The state is a
-// synthetic two-fold cone over the reference. Results: docs/performance.md.
+// limit surface (sheet_state_evaluator: a Newton search per material point), directly and
+// through a ConeSymmetryMeter, which locates those points once. The state is a synthetic
+// two-fold cone over the reference. Results: docs/performance.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -64,6 +65,38 @@ void BM_ConeSymmetryGmshDisc(benchmark::State& state) {
   state.counters["sheet_vertices"] = static_cast<double>(b.model->sheet_vertices().size());
 }
 BENCHMARK(BM_ConeSymmetryGmshDisc)->Unit(benchmark::kMillisecond);
+
+/// The same through a ConeSymmetryMeter, whose quarter-turned points are located once: the
+/// whole measure, the S4 defect alone, and the meter's construction.
+void BM_ConeSymmetryMeterGmshDisc(benchmark::State& state) {
+  static Bench b = gmsh();
+  static const ConeSymmetryMeter meter(*b.model);
+  for (auto _ : state) benchmark::DoNotOptimize(meter.measure(b.x).s4.defect);
+}
+BENCHMARK(BM_ConeSymmetryMeterGmshDisc)->Unit(benchmark::kMillisecond);
+
+void BM_ConeSymmetryMeterS4GmshDisc(benchmark::State& state) {
+  static Bench b = gmsh();
+  static const ConeSymmetryMeter meter(*b.model);
+  for (auto _ : state) benchmark::DoNotOptimize(meter.s4(b.x).defect);
+}
+BENCHMARK(BM_ConeSymmetryMeterS4GmshDisc)->Unit(benchmark::kMillisecond);
+
+void BM_ConeSymmetryMeterS4RingsDisc(benchmark::State& state) {
+  static Bench b = rings();
+  static const ConeSymmetryMeter meter(*b.model);
+  for (auto _ : state) benchmark::DoNotOptimize(meter.s4(b.x).defect);
+}
+BENCHMARK(BM_ConeSymmetryMeterS4RingsDisc)->Unit(benchmark::kMillisecond);
+
+void BM_ConeSymmetryMeterConstructionGmshDisc(benchmark::State& state) {
+  static Bench b = gmsh();
+  for (auto _ : state) {
+    const ConeSymmetryMeter meter(*b.model);
+    benchmark::DoNotOptimize(&meter);
+  }
+}
+BENCHMARK(BM_ConeSymmetryMeterConstructionGmshDisc)->Unit(benchmark::kMillisecond);
 
 /// One evaluation y(X) of the exact limit surface at a material point of the Gmsh disc.
 void BM_LimitSurfaceAtAMaterialPoint(benchmark::State& state) {

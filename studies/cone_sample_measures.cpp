@@ -59,7 +59,8 @@ ConeSampleMeasures ConeSampleMeasurer::measure(const BranchSample& s) {
   m.s4_defect = m.chord_up = m.chord_down = nan;
   if (settings_.measure_symmetry) {
     try {
-      const ConeSymmetry symmetry = measure_cone_symmetry(model_, s.x);
+      if (!symmetry_) symmetry_.emplace(model_);
+      const ConeSymmetry symmetry = symmetry_->measure(s.x);
       m.s4_defect = symmetry.s4.defect;
       m.chord_up = symmetry.chords.chord_up;
       m.chord_down = symmetry.chords.chord_down;

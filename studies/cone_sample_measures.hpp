@@ -8,8 +8,10 @@
 /// functions need: the gap, the signed gap and dE_b-hat/dphi_e along the branch.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
+#include "libshell/analysis/cone_symmetry.hpp"
 #include "libshell/analysis/self_distance.hpp"
 #include "libshell/analysis/self_intersection.hpp"
 #include "libshell/assembly/shell_model.hpp"
@@ -79,6 +81,8 @@ class ConeSampleMeasurer {
   SelfIntersectionOptions crossing_options_;
   Eigen::VectorXd gap_state_;
   double gap_value_ = 0.0;
+  /// The symmetry measures' mesh-dependent part, prepared at the first sample measured.
+  std::optional<ConeSymmetryMeter> symmetry_;
 };
 
 }  // namespace growshell

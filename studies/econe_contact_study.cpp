@@ -84,24 +84,21 @@ bool breaks_s4(double defect, double threshold) { return defect > threshold && d
 /// whose end has no measurable S4 defect, or one a thousandth of its start's or less, has
 /// snapped onto another branch (the S4-symmetric cone; measured: from 4e-3 to 2e-9 in one step
 /// next to the turned cone's fold at h = 0.04), not followed this one, whose defect changes
-/// by a few per cent a step. A step's start is mostly the last step's end, whose defect is kept
-/// (a measure costs 0.5 s on a Gmsh disc, docs/performance.md).
+/// by a few per cent a step. A step's start is mostly the last step's end, whose defect is kept.
 std::function<bool(const BranchSample&, const BranchSample&)> s4_breaking_step(
-    const ShellModel& model) {
+    std::shared_ptr<const ConeSymmetryMeter> meter) {
   struct Measured {
     Eigen::VectorXd x;
     double defect = 0.0;
   };
   auto last = std::make_shared<Measured>();
-  return [&model, last](const BranchSample& from, const BranchSample& to) {
+  return [meter, last](const BranchSample& from, const BranchSample& to) {
     try {
-      const Measured previous =
-          std::exchange(*last, Measured{to.x, measure_cone_symmetry(model, to.x).s4.defect});
+      const Measured previous = std::exchange(*last, Measured{to.x, meter->s4(to.x).defect});
       const double after = last->defect;
       if (!(after < 0.5)) return false;
       const bool known = previous.x.size() == from.x.size() && previous.x == from.x;
-      return after >=
-             1e-3 * (known ? previous.defect : measure_cone_symmetry(model, from.x).s4.defect);
+      return after >= 1e-3 * (known ? previous.defect : meter->s4(from.x).defect);
     } catch (const std::exception&) {
       return false;
     }
@@ -175,6 +172,8 @@ class EconeContactRun {
   std::string dir_;
   double h_ = 0.0;
   std::unique_ptr<ShellModel> model_;
+  /// The S4 defect and chords of the model's states (its mesh-dependent part prepared once).
+  std::shared_ptr<const ConeSymmetryMeter> symmetry_;
   std::uint64_t fingerprint_ = 0;
   std::vector<Eigen::Index> pinned_;
   std::unique_ptr<ContactProxy> proxy_;
@@ -258,6 +257,7 @@ EconeContactRun::EconeContactRun(const Scene& scene, ExistingOutput existing,
   check_econe_contact_directory(dir_, existing_);
   // The model (a missing mesh file, a mesh that cannot be built) before anything is written.
   model_ = std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_));
+  symmetry_ = std::make_shared<const ConeSymmetryMeter>(*model_);
   fingerprint_ = scene_model_fingerprint(scene_);
   h_ = thickness_at_radius(scene_.thickness, 0.0, scene_.geometry.radius);
   if (existing_ == ExistingOutput::Resume && fs::exists(fs::path(dir_) / kConeDir / "scene.json"))
@@ -361,19 +361,19 @@ void EconeContactRun::set_up_contact() {
   // for phi_e^crit (docs/performance.md, "Branch jumps and the step control").
   options_.skewed_down_ends_at_fold = true;
   options_.skewed_fold_approach_tolerance = kFoldApproachTolerance;
-  options_.skewed_accept_step = s4_breaking_step(*model_);
+  options_.skewed_accept_step = s4_breaking_step(symmetry_);
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
   options_.skew_search_at = st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
   // A relaxed state that keeps S4 is the symmetric cone in another frame (turned about the
   // axis against the mesh), not a skewed cone.
   {
-    const ShellModel& model = *model_;
     const double threshold = st.symmetry_threshold;
-    options_.accept_skewed = [&model, threshold](const Eigen::VectorXd& x, std::string& why_not) {
+    options_.accept_skewed = [meter = symmetry_, threshold](const Eigen::VectorXd& x,
+                                                            std::string& why_not) {
       double defect = 0.0;
       try {
-        defect = measure_cone_symmetry(model, x).s4.defect;
+        defect = meter->s4(x).defect;
       } catch (const std::exception& e) {
         why_not = std::string("no S4 defect (") + e.what() + ")";
         return false;
@@ -518,7 +518,7 @@ double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double defect = nan, up = nan, down = nan;
   try {
-    const ConeSymmetry symmetry = measure_cone_symmetry(*model_, s.sample.x);
+    const ConeSymmetry symmetry = symmetry_->measure(s.sample.x);
     defect = symmetry.s4.defect;
     up = symmetry.chords.chord_up;
     down = symmetry.chords.chord_down;
@@ -822,7 +822,7 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   o.arclength.parameter_min = options_.skewed_min;
   o.arclength.parameter_max = options_.symmetric_end;
   o.arclength.max_steps = options_.max_steps_per_branch;
-  o.arclength.accept_step = s4_breaking_step(*model_);
+  o.arclength.accept_step = s4_breaking_step(symmetry_);
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
   const double threshold = scene_.study.symmetry_threshold;
   EconeStageRecord::Turned t;

@@ -395,42 +395,55 @@ FoldChords fold_pair_chords(const StateEvaluator& y, const FoldDirections& folds
   return out;
 }
 
-ConeSymmetry measure_cone_symmetry(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                   const FoldChordOptions& options) {
-  check_state(model, x, "measure_cone_symmetry");
-  double radius = 0.0;
-  const Eigen::MatrixX3d reference = centred_reference(model, radius);
-  const Eigen::Vector3d c = model.settings().growth.center;
-  const StateEvaluator absolute = sheet_state_evaluator(model, x);
+ConeSymmetryMeter::ConeSymmetryMeter(const ShellModel& model) : model_(model) {
+  reference_ = centred_reference(model, radius_);
+  std::string reason;
+  image_ = sheet_quarter_turn(model, radius_, reason);
+  if (image_.empty()) {
+    // The quarter-turned material points of the sheet vertices, in the model's frame.
+    const Eigen::Vector3d c = model.settings().growth.center;
+    Eigen::MatrixX3d points(reference_.rows(), 3);
+    for (Eigen::Index k = 0; k < reference_.rows(); ++k) {
+      const Eigen::Vector3d X = quarter_turned(reference_.row(k).transpose());
+      points.row(k) << X.x() + c.x(), X.y() + c.y(), c.z();
+    }
+    turned_.emplace(model, points);
+  }
+}
+
+S4Defect ConeSymmetryMeter::s4(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  check_state(model_, x, "ConeSymmetryMeter::s4");
+  if (!image_.empty()) return vertex_map_defect(model_, x, reference_, image_, radius_);
+  return s4_symmetry_defect(reference_, model_.limit_positions(x), turned_->positions(x), radius_);
+}
+
+ConeSymmetry ConeSymmetryMeter::measure(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        const FoldChordOptions& options) const {
+  check_state(model_, x, "measure_cone_symmetry");
+  const Eigen::Vector3d c = model_.settings().growth.center;
+  const StateEvaluator absolute = sheet_state_evaluator(model_, x);
   const StateEvaluator y = [&](const Eigen::Vector3d& X) {
     return absolute(Eigen::Vector3d(X.x() + c.x(), X.y() + c.y(), c.z()));
   };
   ConeSymmetry out;
-  std::string reason;
-  const std::vector<int> image = sheet_quarter_turn(model, radius, reason);
-  out.vertex_map = !image.empty();
-  if (out.vertex_map) {
-    out.s4 = vertex_map_defect(model, x, reference, image, radius);
-  } else {
-    const Eigen::MatrixX3d current = model.limit_positions(x);
-    Eigen::MatrixX3d turned(current.rows(), 3);
-    for (Eigen::Index k = 0; k < current.rows(); ++k)
-      turned.row(k) = y(quarter_turned(reference.row(k).transpose())).transpose();
-    out.s4 = s4_symmetry_defect(reference, current, turned, radius);
-  }
+  out.vertex_map = !image_.empty();
+  out.s4 = s4(x);
+  const Eigen::MatrixX3d& reference = reference_;
+  const double radius = radius_;
   // The apex: the state at the growth centre for a disc, the centroid of the inner rim for a
   // ring. Disc or ring is told by the rim (sheet vertices next to the ghost layer): a ring has
   // rim vertices well inside R. (Not by a vertex sitting exactly at the centre: on a mesh with
   // extraordinary vertices the centre vertex's limit position is off the centre.)
-  const Eigen::MatrixX3d limit = model.limit_positions(x);
-  const auto& sheet = model.sheet_vertices();
-  std::vector<char> in_sheet(static_cast<std::size_t>(model.topology().num_vertices()), 0);
+  const Eigen::MatrixX3d limit = model_.limit_positions(x);
+  const auto& sheet = model_.sheet_vertices();
+  std::vector<char> in_sheet(static_cast<std::size_t>(model_.topology().num_vertices()), 0);
   for (int v : sheet) in_sheet[static_cast<std::size_t>(v)] = 1;
   std::vector<Eigen::Index> rim;
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
   for (std::size_t k = 0; k < sheet.size(); ++k) {
     bool on_rim = false;
-    for (int u : model.topology().one_ring(sheet[k])) on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
+    for (int u : model_.topology().one_ring(sheet[k]))
+      on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
     if (!on_rim) continue;
     const double r = reference.row(static_cast<Eigen::Index>(k)).norm();
     r_min = std::min(r_min, r);
@@ -455,6 +468,13 @@ ConeSymmetry measure_cone_symmetry(const ShellModel& model, const Eigen::Ref<con
   out.folds = fold_directions(y, out.s4.axis, apex, radius, ring_options);
   out.chords = fold_pair_chords(y, out.folds, apex, radius, ring_options);
   return out;
+}
+
+ConeSymmetry measure_cone_symmetry(const ShellModel& model,
+                                   const Eigen::Ref<const Eigen::VectorXd>& x,
+                                   const FoldChordOptions& options) {
+  check_state(model, x, "measure_cone_symmetry");
+  return ConeSymmetryMeter(model).measure(x, options);
 }
 
 }  // namespace growshell

@@ -12,6 +12,7 @@
 /// variation breaks S4 but keeps both mirrors: one fold pair closes, the other opens.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "libshell/analysis/state_evaluator.hpp"
@@ -156,8 +157,33 @@ struct ConeSymmetry {
 /// limit surface either way. The apex is the limit position of the sheet vertex at
 /// the growth centre, or for a ring the centroid of its inner rim's (as analyze_rim_folds);
 /// a ring's chords skip the radius fractions inside its hole (and use the rim alone if none
-/// is left). Throws std::invalid_argument as the functions it calls.
+/// is left). Throws std::invalid_argument as the functions it calls. Prepares a
+/// ConeSymmetryMeter for the call: to measure many states of one model, hold one.
 ConeSymmetry measure_cone_symmetry(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
                                    const FoldChordOptions& options = {});
+
+/// measure_cone_symmetry for many states of one model: what depends on the mesh alone (the
+/// centred reference, and the quarter-turn vertex map or, on a mesh without it, the
+/// quarter-turned sheet vertices located on the reference limit surface as a
+/// MaterialPointSampling) is prepared once, so that the S4 defect of a state on a Gmsh disc is
+/// a sparse product instead of a search for each point. Holds a reference to the model, which
+/// must outlive it.
+class ConeSymmetryMeter {
+ public:
+  /// Throws std::invalid_argument as measure_cone_symmetry for a model without elements.
+  explicit ConeSymmetryMeter(const ShellModel& model);
+  /// measure_cone_symmetry(model, x, options).
+  ConeSymmetry measure(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       const FoldChordOptions& options = {}) const;
+  /// Its S4 defect alone (measure(x).s4), without the folds and chords.
+  S4Defect s4(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+ private:
+  const ShellModel& model_;
+  double radius_ = 0.0;
+  Eigen::MatrixX3d reference_;
+  std::vector<int> image_;  // sheet index of each sheet vertex's quarter turn, if the mesh has it
+  std::optional<MaterialPointSampling> turned_;  // else the quarter-turned points
+};
 
 }  // namespace growshell

@@ -78,19 +78,26 @@ struct Interpolant {
     *residual = r;
     return q;
   }
-  /// y at parameter q of element t, continued to first order to the reference point p where p
-  /// lies beyond the element (residual above the tolerance).
-  Eigen::Vector3d limit_state(int t, const Eigen::Vector2d& q, const Eigen::Vector2d& p) const {
+  /// Where material point p lies: element t, parameter q, and the first-order step s in
+  /// (v, w) from q to p where p lies beyond the element (zero where it is on it).
+  struct Location {
+    int t = 0;
+    Eigen::Vector2d q = Eigen::Vector2d::Zero();
+    Eigen::Vector2d s = Eigen::Vector2d::Zero();
+    PatchBasis basis;  // of element t at q
+  };
+  /// The location of p at parameter q of element t: the step s is the first-order one from the
+  /// reference limit point there to p, where p lies beyond the element (residual above the
+  /// tolerance).
+  Location located(int t, const Eigen::Vector2d& q, const Eigen::Vector2d& p) const {
     const LoopPatch& patch = patches[static_cast<std::size_t>(t)];
-    const PatchBasis basis = evaluate_patch_basis(patch, q(0), q(1));
-    const LimitSurfacePoint S = evaluate_limit_surface(current_control, patch, basis);
-    const LimitSurfacePoint R = evaluate_limit_surface(reference_control, patch, basis);
+    Location at{t, q, Eigen::Vector2d::Zero(), evaluate_patch_basis(patch, q(0), q(1))};
+    const LimitSurfacePoint R = evaluate_limit_surface(reference_control, patch, at.basis);
     const Eigen::Vector2d d = p - R.position.head<2>();
-    if (d.norm() <= tolerance) return S.position;
-    const Eigen::Matrix2d J = R.tangents.topRows<2>();
-    return S.position + S.tangents * J.partialPivLu().solve(d);
+    if (d.norm() > tolerance) at.s = R.tangents.topRows<2>().partialPivLu().solve(d);
+    return at;
   }
-  Eigen::Vector3d operator()(const Eigen::Vector3d& X) const {
+  Location locate(const Eigen::Vector3d& X) const {
     const Eigen::Vector2d p = X.head<2>();
     const int i = static_cast<int>(std::floor((p.x() - origin.x()) / cell));
     const int j = static_cast<int>(std::floor((p.y() - origin.y()) / cell));
@@ -110,14 +117,14 @@ struct Interpolant {
           if ((l.minCoeff() >= slack) != containing) continue;
           double residual = 0.0;
           const Eigen::Vector2d q = parameter(t, p, l, &residual);
-          if (residual <= tolerance) return limit_state(t, q, p);
+          if (residual <= tolerance) return located(t, q, p);
           if (residual < best_residual) {
             best_residual = residual;
             best = t;
             best_q = q;
           }
         }
-      if (best >= 0) return limit_state(best, best_q, p);
+      if (best >= 0) return located(best, best_q, p);
     }
     // Outside: first-order continuation from the nearest triangle (lowest index among ties).
     int best = 0;
@@ -131,24 +138,23 @@ struct Interpolant {
     }
     const Eigen::Vector3d l = barycentric(best, p);
     double residual = 0.0;
-    return limit_state(best, parameter(best, p, l, &residual), p);
+    return located(best, parameter(best, p, l, &residual), p);
+  }
+  /// y at a location: the current limit surface there, continued to first order by its step.
+  Eigen::Vector3d operator()(const Eigen::Vector3d& X) const {
+    const Location at = locate(X);
+    const LimitSurfacePoint S =
+        evaluate_limit_surface(current_control, patches[static_cast<std::size_t>(at.t)], at.basis);
+    return S.position + S.tangents * at.s;
   }
 };
 
-}  // namespace
-
-StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x) {
-  if (x.size() != model.dimension())
-    throw std::invalid_argument("sheet_state_evaluator: the state has " + std::to_string(x.size()) +
-                                " entries, the model " + std::to_string(model.dimension()));
-  if (!x.allFinite())
-    throw std::invalid_argument("sheet_state_evaluator: the state holds a non-finite value");
+/// The interpolant of `model`'s reference (its current control points empty).
+std::shared_ptr<Interpolant> reference_interpolant(const ShellModel& model, const char* caller) {
   auto in = std::make_shared<Interpolant>();
   in->reference = model.limit_positions(model.reference_positions()).leftCols<2>();
   in->reference_control = Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(
       model.reference_positions().data(), model.dimension() / 3, 3);
-  in->current_control =
-      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
   in->patches = model.patches().patch;
   const auto& sheet = model.sheet_vertices();
   std::vector<int> sheet_index(static_cast<std::size_t>(model.topology().num_vertices()), -1);
@@ -159,7 +165,8 @@ StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<c
                              sheet_index[static_cast<std::size_t>(f[1])],
                              sheet_index[static_cast<std::size_t>(f[2])]});
   }
-  if (in->triangles.empty()) throw std::invalid_argument("sheet_state_evaluator: the model has no elements");
+  if (in->triangles.empty())
+    throw std::invalid_argument(std::string(caller) + ": the model has no elements");
   // Buckets of about one element each.
   const Eigen::Vector2d lo = in->reference.colwise().minCoeff().transpose();
   const Eigen::Vector2d hi = in->reference.colwise().maxCoeff().transpose();
@@ -186,7 +193,53 @@ StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<c
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) in->buckets[static_cast<std::size_t>(j * in->nx + i)].push_back(t);
   }
+  return in;
+}
+
+}  // namespace
+
+StateEvaluator sheet_state_evaluator(const ShellModel& model,
+                                     const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (x.size() != model.dimension())
+    throw std::invalid_argument("sheet_state_evaluator: the state has " + std::to_string(x.size()) +
+                                " entries, the model " + std::to_string(model.dimension()));
+  if (!x.allFinite())
+    throw std::invalid_argument("sheet_state_evaluator: the state holds a non-finite value");
+  std::shared_ptr<Interpolant> in = reference_interpolant(model, "sheet_state_evaluator");
+  in->current_control =
+      Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
   return [in](const Eigen::Vector3d& X) { return (*in)(X); };
+}
+
+MaterialPointSampling::MaterialPointSampling(const ShellModel& model,
+                                             const Eigen::Ref<const Eigen::MatrixX3d>& points)
+    : dimension_(model.dimension()) {
+  if (!points.allFinite())
+    throw std::invalid_argument("MaterialPointSampling: a material point is not finite");
+  const std::shared_ptr<const Interpolant> in =
+      reference_interpolant(model, "MaterialPointSampling");
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index k = 0; k < points.rows(); ++k) {
+    const Interpolant::Location at = in->locate(points.row(k).transpose());
+    const std::vector<int>& control = in->patches[static_cast<std::size_t>(at.t)].control;
+    // y = sum_j (value_j + first_j . s) x_j: the limit position, continued to first order.
+    const Eigen::VectorXd weights = at.basis.value + at.basis.first * at.s;
+    for (std::size_t j = 0; j < control.size(); ++j)
+      entries.emplace_back(k, control[j], weights(static_cast<Eigen::Index>(j)));
+  }
+  basis_.resize(points.rows(), dimension_ / 3);
+  basis_.setFromTriplets(entries.begin(), entries.end());
+}
+
+Eigen::MatrixX3d MaterialPointSampling::positions(
+    const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  if (x.size() != dimension_)
+    throw std::invalid_argument("MaterialPointSampling::positions: the state has " +
+                                std::to_string(x.size()) + " entries, the model " +
+                                std::to_string(dimension_));
+  const Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>> control(x.data(),
+                                                                                x.size() / 3, 3);
+  return basis_ * control;
 }
 
 }  // namespace growshell

@@ -6,6 +6,7 @@
 /// one function.
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <functional>
 
 #include "libshell/assembly/shell_model.hpp"
@@ -29,5 +30,29 @@ using StateEvaluator = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
 /// evaluator holds a copy of what it needs (not the model). Throws std::invalid_argument if x
 /// does not have model.dimension() entries or holds a non-finite value.
 StateEvaluator sheet_state_evaluator(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x);
+
+/// y at fixed material points, for any state: the points are located once, as
+/// sheet_state_evaluator locates them, and the limit surface (and its first-order continuation
+/// beyond the rim) is linear in the control points, so each state costs one sparse product.
+/// For an analysis that maps the same material points at every sample (the quarter-turned
+/// sheet vertices of the S4 defect on a mesh without the quarter turn), where the evaluator
+/// would search for each point again.
+class MaterialPointSampling {
+ public:
+  /// Locates `points` (m, one per row; only x and y count) on `model`'s reference. Throws
+  /// std::invalid_argument for a non-finite point or a model without elements.
+  MaterialPointSampling(const ShellModel& model, const Eigen::Ref<const Eigen::MatrixX3d>& points);
+
+  /// y at the points (one row each, m) for the state x of the model: equal to
+  /// sheet_state_evaluator(model, x) at each point up to the order of summation. Throws
+  /// std::invalid_argument if x does not have the model's dimension.
+  Eigen::MatrixX3d positions(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+
+  Eigen::Index size() const { return basis_.rows(); }
+
+ private:
+  Eigen::Index dimension_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> basis_;  // points x control vertices
+};
 
 }  // namespace growshell

@@ -269,6 +269,45 @@ TEST(ConeSymmetry, UnstructuredDiscTakesTheApexAtTheCentre) {
   EXPECT_NEAR(s.chords.chord_down, exact_chord(0.4), 1e-2);
 }
 
+// ConeSymmetryMeter on a Gmsh disc (no quarter-turn vertex map): its S4 defect, from the
+// quarter-turned points located once, equals the defect from the evaluator's images of the same
+// points, for a symmetric cone and a B2-perturbed one, and its measure() is the free function's.
+TEST(ConeSymmetry, MeterOnAnUnstructuredDiscIsTheEvaluatorsDefect) {
+  GmshDiscMeshOptions o;
+  o.size_slope = 0.15;
+  o.size_floor = 0.02;
+  ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
+  const ConeSymmetryMeter meter(model);
+  for (const double eps : {0.0, 0.05}) {
+    const Eigen::VectorXd x = cone_state(model, 0.4, eps);
+    // The same points through the evaluator: the sheet vertices' reference limit positions and
+    // their quarter turns (the growth centre is the origin here).
+    const Eigen::MatrixX3d current = model.limit_positions(x);
+    Eigen::MatrixX3d reference = model.limit_positions(model.reference_positions());
+    reference.col(2).setZero();
+    const StateEvaluator y = sheet_state_evaluator(model, x);
+    Eigen::MatrixX3d turned(reference.rows(), 3);
+    for (Eigen::Index k = 0; k < reference.rows(); ++k)
+      turned.row(k) = y(Eigen::Vector3d(-reference(k, 1), reference(k, 0), 0.0)).transpose();
+    double radius = 0.0;
+    for (int v : model.sheet_vertices())
+      radius = std::max(radius, model.reference_positions().segment<2>(3 * v).norm());
+    const S4Defect expected = s4_symmetry_defect(reference, current, turned, radius);
+    const S4Defect d = meter.s4(x);
+    EXPECT_NEAR(d.defect, expected.defect, 1e-12 * std::max(1.0, expected.defect)) << eps;
+    EXPECT_LT((d.axis - expected.axis).norm(), 1e-9) << eps;
+    const ConeSymmetry whole = measure_cone_symmetry(model, x);
+    const ConeSymmetry by_meter = meter.measure(x);
+    EXPECT_FALSE(whole.vertex_map);
+    EXPECT_EQ(by_meter.s4.defect, whole.s4.defect);
+    EXPECT_EQ(by_meter.chords.chord_up, whole.chords.chord_up);
+    EXPECT_EQ(by_meter.chords.chord_down, whole.chords.chord_down);
+  }
+  EXPECT_GT(meter.s4(cone_state(model, 0.4, 0.05)).defect,
+            3.0 * meter.s4(cone_state(model, 0.4, 0.0)).defect);
+  EXPECT_THROW(meter.s4(Eigen::VectorXd::Zero(4)), std::invalid_argument);
+}
+
 TEST(ConeSymmetry, RingWithQuarterTurnUsesTheVertexMap) {
   AnnulusMeshOptions o;
   o.inner_radius = 0.25;

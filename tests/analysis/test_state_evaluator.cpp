@@ -3,6 +3,7 @@
 // of any element, on a lattice disc and on an unstructured Gmsh disc with irregular vertices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "libshell/analysis/state_evaluator.hpp"
@@ -79,13 +80,48 @@ TEST(StateEvaluator, IsTheLimitSurfaceOnALatticeDisc) {
   EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
 }
 
-TEST(StateEvaluator, IsTheLimitSurfaceOnAnUnstructuredDiscWithIrregularVertices) {
+/// A coarse Gmsh disc (size slope 0.3, floor 0.05) with irregular vertices.
+ShellModel irregular_gmsh_model() {
   GmshDiscMeshOptions o;
   o.size_slope = 0.3;
   o.size_floor = 0.05;
-  const ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
+  return ShellModel(make_gmsh_disc_mesh(o), ShellModelSettings{});
+}
+
+TEST(StateEvaluator, IsTheLimitSurfaceOnAnUnstructuredDiscWithIrregularVertices) {
+  const ShellModel model = irregular_gmsh_model();
   ASSERT_GT(model.patches().num_irregular(), 10);
   EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
+}
+
+// MaterialPointSampling: the points located once, then one sparse product per state, give the
+// evaluator's values for two different states, at points inside the reference surface (a
+// spiral over the disc) and beyond its rim (to 1.03 R, first-order continuation), on the Gmsh
+// disc with irregular vertices.
+TEST(StateEvaluator, SamplingFixedMaterialPointsIsTheEvaluator) {
+  const ShellModel model = irregular_gmsh_model();
+  ASSERT_GT(model.patches().num_irregular(), 10);
+  const int n = 200;
+  Eigen::MatrixX3d points(n, 3);
+  for (int k = 0; k < n; ++k) {
+    const double r = 1.03 * (k + 0.5) / n, t = 0.37 * k;
+    points.row(k) << r * std::cos(t), r * std::sin(t), 0.0;
+  }
+  const MaterialPointSampling sampling(model, points);
+  EXPECT_EQ(sampling.size(), n);
+  Eigen::VectorXd bent = curved_state(model);
+  for (Eigen::Index i = 2; i < bent.size(); i += 3) bent(i) += 0.3 * std::sin(7.0 * bent(i - 2));
+  for (const Eigen::VectorXd& x : {curved_state(model), bent}) {
+    const StateEvaluator y = sheet_state_evaluator(model, x);
+    const Eigen::MatrixX3d sampled = sampling.positions(x);
+    double worst = 0.0;
+    for (int k = 0; k < n; ++k)
+      worst = std::max(worst, (sampled.row(k).transpose() - y(points.row(k).transpose())).norm());
+    EXPECT_LT(worst, 1e-13);
+  }
+  EXPECT_THROW(sampling.positions(Eigen::VectorXd::Zero(7)), std::invalid_argument);
+  points(3, 0) = std::nan("");
+  EXPECT_THROW(MaterialPointSampling(model, points), std::invalid_argument);
 }
 
 TEST(StateEvaluator, RejectsBadStates) {
