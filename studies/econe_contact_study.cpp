@@ -172,8 +172,13 @@ class EconeContactRun {
   std::string dir_;
   double h_ = 0.0;
   std::unique_ptr<ShellModel> model_;
-  /// The S4 defect and chords of the model's states (its mesh-dependent part prepared once).
+  /// The S4 defect and chords of the model's states, its mesh-dependent part prepared at the
+  /// first use (symmetry()).
   std::shared_ptr<const ConeSymmetryMeter> symmetry_;
+  const std::shared_ptr<const ConeSymmetryMeter>& symmetry() {
+    if (!symmetry_) symmetry_ = std::make_shared<const ConeSymmetryMeter>(*model_);
+    return symmetry_;
+  }
   std::uint64_t fingerprint_ = 0;
   std::vector<Eigen::Index> pinned_;
   std::unique_ptr<ContactProxy> proxy_;
@@ -257,7 +262,6 @@ EconeContactRun::EconeContactRun(const Scene& scene, ExistingOutput existing,
   check_econe_contact_directory(dir_, existing_);
   // The model (a missing mesh file, a mesh that cannot be built) before anything is written.
   model_ = std::make_unique<ShellModel>(scene_mesh(scene_), scene_model_settings(scene_));
-  symmetry_ = std::make_shared<const ConeSymmetryMeter>(*model_);
   fingerprint_ = scene_model_fingerprint(scene_);
   h_ = thickness_at_radius(scene_.thickness, 0.0, scene_.geometry.radius);
   if (existing_ == ExistingOutput::Resume && fs::exists(fs::path(dir_) / kConeDir / "scene.json"))
@@ -361,7 +365,7 @@ void EconeContactRun::set_up_contact() {
   // for phi_e^crit (docs/performance.md, "Branch jumps and the step control").
   options_.skewed_down_ends_at_fold = true;
   options_.skewed_fold_approach_tolerance = kFoldApproachTolerance;
-  options_.skewed_accept_step = s4_breaking_step(symmetry_);
+  options_.skewed_accept_step = s4_breaking_step(symmetry());
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
   options_.skew_search_at = st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
@@ -369,8 +373,8 @@ void EconeContactRun::set_up_contact() {
   // axis against the mesh), not a skewed cone.
   {
     const double threshold = st.symmetry_threshold;
-    options_.accept_skewed = [meter = symmetry_, threshold](const Eigen::VectorXd& x,
-                                                            std::string& why_not) {
+    options_.accept_skewed = [meter = symmetry(), threshold](const Eigen::VectorXd& x,
+                                                             std::string& why_not) {
       double defect = 0.0;
       try {
         defect = meter->s4(x).defect;
@@ -518,10 +522,10 @@ double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double defect = nan, up = nan, down = nan;
   try {
-    const ConeSymmetry symmetry = symmetry_->measure(s.sample.x);
-    defect = symmetry.s4.defect;
-    up = symmetry.chords.chord_up;
-    down = symmetry.chords.chord_down;
+    const ConeSymmetry measured = symmetry()->measure(s.sample.x);
+    defect = measured.s4.defect;
+    up = measured.chords.chord_up;
+    down = measured.chords.chord_down;
   } catch (const std::exception&) {
     // A state without fold directions has no S4 defect: NaN in the record.
   }
@@ -822,7 +826,7 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   o.arclength.parameter_min = options_.skewed_min;
   o.arclength.parameter_max = options_.symmetric_end;
   o.arclength.max_steps = options_.max_steps_per_branch;
-  o.arclength.accept_step = s4_breaking_step(symmetry_);
+  o.arclength.accept_step = s4_breaking_step(symmetry());
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
   const double threshold = scene_.study.symmetry_threshold;
   EconeStageRecord::Turned t;

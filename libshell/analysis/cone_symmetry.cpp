@@ -297,10 +297,10 @@ std::vector<int> sheet_quarter_turn(const ShellModel& model, double radius, std:
   return image;
 }
 
-S4Defect vertex_map_defect(const ShellModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
-                           const Eigen::MatrixX3d& reference, const std::vector<int>& image,
-                           double radius) {
-  const Eigen::MatrixX3d current = model.limit_positions(x);
+/// The S4 defect of the sheet vertices' limit positions `current`, their images given by the
+/// quarter-turn vertex map `image`.
+S4Defect vertex_map_defect(const Eigen::MatrixX3d& current, const Eigen::MatrixX3d& reference,
+                           const std::vector<int>& image, double radius) {
   Eigen::MatrixX3d turned(current.rows(), 3);
   for (Eigen::Index k = 0; k < current.rows(); ++k)
     turned.row(k) = current.row(image[static_cast<std::size_t>(k)]);
@@ -320,7 +320,7 @@ S4Defect s4_symmetry_defect(const ShellModel& model, const Eigen::Ref<const Eige
         "s4_symmetry_defect: the reference mesh lacks the quarter-turn vertex symmetry about the "
         "growth centre, so the S4 images of its vertices are not vertices (" +
         reason + "); measure_cone_symmetry evaluates them on the surface instead");
-  return vertex_map_defect(model, x, reference, image, radius);
+  return vertex_map_defect(model.limit_positions(x), reference, image, radius);
 }
 
 FoldDirections fold_directions(const StateEvaluator& y, const Eigen::Vector3d& axis,
@@ -409,12 +409,40 @@ ConeSymmetryMeter::ConeSymmetryMeter(const ShellModel& model) : model_(model) {
     }
     turned_.emplace(model, points);
   }
+  // The rim (sheet vertices next to the ghost layer) tells a disc from a ring: a ring has rim
+  // vertices well inside R. (Not a vertex sitting exactly at the centre: on a mesh with
+  // extraordinary vertices the centre vertex's limit position is off the centre.)
+  const auto& sheet = model.sheet_vertices();
+  std::vector<char> in_sheet(static_cast<std::size_t>(model.topology().num_vertices()), 0);
+  for (int v : sheet) in_sheet[static_cast<std::size_t>(v)] = 1;
+  std::vector<Eigen::Index> rim;
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
+  for (std::size_t k = 0; k < sheet.size(); ++k) {
+    bool on_rim = false;
+    for (int u : model.topology().one_ring(sheet[k]))
+      on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
+    if (!on_rim) continue;
+    const double r = reference_.row(static_cast<Eigen::Index>(k)).norm();
+    r_min = std::min(r_min, r);
+    r_max = std::max(r_max, r);
+    rim.push_back(static_cast<Eigen::Index>(k));
+  }
+  if (r_min < 0.9 * r_max) {
+    inner_radius_ = r_min;
+    for (Eigen::Index k : rim)
+      if (reference_.row(k).norm() < 0.5 * (r_min + r_max)) inner_rim_.push_back(k);
+  }
+}
+
+S4Defect ConeSymmetryMeter::s4_of(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                  const Eigen::MatrixX3d& limit) const {
+  if (!image_.empty()) return vertex_map_defect(limit, reference_, image_, radius_);
+  return s4_symmetry_defect(reference_, limit, turned_->positions(x), radius_);
 }
 
 S4Defect ConeSymmetryMeter::s4(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   check_state(model_, x, "ConeSymmetryMeter::s4");
-  if (!image_.empty()) return vertex_map_defect(model_, x, reference_, image_, radius_);
-  return s4_symmetry_defect(reference_, model_.limit_positions(x), turned_->positions(x), radius_);
+  return s4_of(x, model_.limit_positions(x));
 }
 
 ConeSymmetry ConeSymmetryMeter::measure(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -425,48 +453,24 @@ ConeSymmetry ConeSymmetryMeter::measure(const Eigen::Ref<const Eigen::VectorXd>&
   const StateEvaluator y = [&](const Eigen::Vector3d& X) {
     return absolute(Eigen::Vector3d(X.x() + c.x(), X.y() + c.y(), c.z()));
   };
+  const Eigen::MatrixX3d limit = model_.limit_positions(x);
   ConeSymmetry out;
   out.vertex_map = !image_.empty();
-  out.s4 = s4(x);
-  const Eigen::MatrixX3d& reference = reference_;
-  const double radius = radius_;
+  out.s4 = s4_of(x, limit);
   // The apex: the state at the growth centre for a disc, the centroid of the inner rim for a
-  // ring. Disc or ring is told by the rim (sheet vertices next to the ghost layer): a ring has
-  // rim vertices well inside R. (Not by a vertex sitting exactly at the centre: on a mesh with
-  // extraordinary vertices the centre vertex's limit position is off the centre.)
-  const Eigen::MatrixX3d limit = model_.limit_positions(x);
-  const auto& sheet = model_.sheet_vertices();
-  std::vector<char> in_sheet(static_cast<std::size_t>(model_.topology().num_vertices()), 0);
-  for (int v : sheet) in_sheet[static_cast<std::size_t>(v)] = 1;
-  std::vector<Eigen::Index> rim;
-  double r_min = std::numeric_limits<double>::infinity(), r_max = 0.0;
-  for (std::size_t k = 0; k < sheet.size(); ++k) {
-    bool on_rim = false;
-    for (int u : model_.topology().one_ring(sheet[k]))
-      on_rim = on_rim || !in_sheet[static_cast<std::size_t>(u)];
-    if (!on_rim) continue;
-    const double r = reference.row(static_cast<Eigen::Index>(k)).norm();
-    r_min = std::min(r_min, r);
-    r_max = std::max(r_max, r);
-    rim.push_back(static_cast<Eigen::Index>(k));
-  }
+  // ring, whose chords skip the radius fractions inside its hole.
   Eigen::Vector3d apex = y(Eigen::Vector3d::Zero());
   FoldChordOptions ring_options = options;
-  if (r_min < 0.9 * r_max) {
-    const double inner = r_min;
+  if (inner_radius_) {
     apex.setZero();
-    int count = 0;
-    for (Eigen::Index k : rim)
-      if (reference.row(k).norm() < 0.5 * (r_min + r_max)) {
-        apex += limit.row(k).transpose();
-        ++count;
-      }
-    apex /= std::max(count, 1);
-    std::erase_if(ring_options.radius_fractions, [&](double f) { return f * radius < inner; });
+    for (Eigen::Index k : inner_rim_) apex += limit.row(k).transpose();
+    apex /= std::max<double>(static_cast<double>(inner_rim_.size()), 1.0);
+    std::erase_if(ring_options.radius_fractions,
+                  [&](double f) { return f * radius_ < *inner_radius_; });
     if (ring_options.radius_fractions.empty()) ring_options.radius_fractions = {1.0};
   }
-  out.folds = fold_directions(y, out.s4.axis, apex, radius, ring_options);
-  out.chords = fold_pair_chords(y, out.folds, apex, radius, ring_options);
+  out.folds = fold_directions(y, out.s4.axis, apex, radius_, ring_options);
+  out.chords = fold_pair_chords(y, out.folds, apex, radius_, ring_options);
   return out;
 }
 

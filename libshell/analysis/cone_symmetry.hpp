@@ -179,11 +179,16 @@ class ConeSymmetryMeter {
   S4Defect s4(const Eigen::Ref<const Eigen::VectorXd>& x) const;
 
  private:
+  /// The S4 defect of x, whose sheet vertices' limit positions are `limit`.
+  S4Defect s4_of(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::MatrixX3d& limit) const;
+
   const ShellModel& model_;
   double radius_ = 0.0;
   Eigen::MatrixX3d reference_;
   std::vector<int> image_;  // sheet index of each sheet vertex's quarter turn, if the mesh has it
   std::optional<MaterialPointSampling> turned_;  // else the quarter-turned points
+  std::optional<double> inner_radius_;           // a ring's: its inner rim's smallest radius
+  std::vector<Eigen::Index> inner_rim_;          // a ring's inner rim (sheet indices), for the apex
 };
 
 }  // namespace growshell

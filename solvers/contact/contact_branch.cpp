@@ -95,16 +95,15 @@ ContactBranchSample describe(const ShellModel& model, ContactPenalty* penalty,
 /// (sets of the nearest triangle, which is re-chosen at every rebuild); an edge-edge pair by
 /// itself.
 bool covered(const ContactCandidates& close, const ContactCandidates& pairs, bool same_triangle) {
-  std::set<std::pair<int, int>> vertex_triangles;
-  std::set<int> vertices;
-  for (Eigen::Index i = 0; i < pairs.vertex_triangle.rows(); ++i) {
-    vertices.insert(pairs.vertex_triangle(i, 0));
-    vertex_triangles.insert({pairs.vertex_triangle(i, 0), pairs.vertex_triangle(i, 1)});
-  }
-  for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i) {
-    const int v = close.vertex_triangle(i, 0), t = close.vertex_triangle(i, 1);
-    if (same_triangle ? !vertex_triangles.count({v, t}) : !vertices.count(v)) return false;
-  }
+  // Each vertex-triangle pair as (vertex, triangle), or (vertex, -1) where any triangle covers.
+  const auto key = [same_triangle](const Eigen::MatrixX2i& m, Eigen::Index i) {
+    return std::pair<int, int>{m(i, 0), same_triangle ? m(i, 1) : -1};
+  };
+  std::set<std::pair<int, int>> held;
+  for (Eigen::Index i = 0; i < pairs.vertex_triangle.rows(); ++i)
+    held.insert(key(pairs.vertex_triangle, i));
+  for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i)
+    if (!held.count(key(close.vertex_triangle, i))) return false;
   std::set<std::pair<int, int>> edges;
   for (Eigen::Index i = 0; i < pairs.edge_edge.rows(); ++i)
     edges.insert({pairs.edge_edge(i, 0), pairs.edge_edge(i, 1)});
