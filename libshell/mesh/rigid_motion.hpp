@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <stdexcept>
 
 namespace growshell {
@@ -65,6 +66,25 @@ inline Eigen::MatrixXd rigid_velocity_fields(const Eigen::Ref<const Eigen::Vecto
     }
   }
   return fields;
+}
+
+/// v (3 entries per vertex) without its part along the six rigid velocity fields of the state
+/// x: v minus its orthogonal projection onto their span. E.g. the modes of a Hessian held by
+/// pins carry a rigid motion that the pins pick; without it a mode of a symmetric state lies
+/// in a class of the symmetry up to the pins' other effects. Throws as rigid_velocity_fields,
+/// if v and x differ in size, and for fewer than 3 vertices.
+inline Eigen::VectorXd without_rigid_velocity(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                              const Eigen::Ref<const Eigen::VectorXd>& v) {
+  if (v.size() != x.size())
+    throw std::invalid_argument("without_rigid_velocity: the state and the vector differ in size");
+  if (x.size() < 9)
+    throw std::invalid_argument("without_rigid_velocity: a state needs at least 3 vertices");
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < x.size() / 3; ++i) centre += x.segment<3>(3 * i);
+  if (x.size() > 0) centre /= static_cast<double>(x.size() / 3);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rigid_velocity_fields(x, centre));
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(x.size(), 6);
+  return v - Q * (Q.transpose() * v);
 }
 
 }  // namespace growshell

@@ -136,6 +136,83 @@ ContactBranchSample describe_contact_sample(const ShellModel& model, const Conta
   return describe(model, nullptr, sample, pairs, proxy, options);
 }
 
+namespace {
+
+/// A segment start relaxed by minimisation on the pair set rebuilt there, and again at each
+/// result until it is an equilibrium of the set built there, or of a set that holds it.
+struct StartRelaxation {
+  bool settled = false;
+  Eigen::VectorXd x;
+  /// The set x is an equilibrium of, where it is not the one built at x: the union of the
+  /// sets built at the results (a vertex in a valley of the other layer, whose nearest
+  /// triangle flips between its two sides from one minimum to the next, keeps both).
+  std::optional<ContactCandidates> pairs;
+  std::string message;  ///< why not, if not settled
+};
+
+StartRelaxation relax_segment_start(const ShellModel& model, const ContactProxy& proxy,
+                                    const Eigen::VectorXd& start, double phi,
+                                    ContactCandidates pairs, const std::vector<Eigen::Index>& fixed,
+                                    double margin, const NewtonOptions& relaxation,
+                                    const ContactBranchOptions& options) {
+  constexpr int kRounds = 6;
+  StartRelaxation out;
+  out.x = start;
+  for (int round = 0; round < kRounds; ++round) {
+    ContactPenalty penalty(proxy, pairs, options.contact_distance, options.stiffness,
+                           model.dimension(), options.gap);
+    PenalizedEnergy family(model, penalty);
+    ObjectiveAtParameter at(family, phi);
+    const NewtonResult r = NewtonSolver(relaxation).minimize(at, out.x, fixed);
+    if (r.status != NewtonStatus::Converged) {
+      out.message = "round " + std::to_string(round + 1) + ": " + r.message;
+      return out;
+    }
+    out.x = r.x;
+    const ContactCandidates own_pairs =
+        near_contact_pairs(proxy, out.x, options.contact_distance + margin,
+                           options.exclusion_radius, options.selection);
+    ContactPenalty own(proxy, own_pairs, options.contact_distance, options.stiffness,
+                       model.dimension(), options.gap);
+    PenalizedEnergy own_family(model, own);
+    Eigen::VectorXd g;
+    own_family.evaluate(out.x, phi, &g, nullptr);
+    for (const Eigen::Index i : fixed) g[i] = 0.0;  // reactions of the held dofs
+    if (g.lpNorm<Eigen::Infinity>() <= relaxation.gradient_tolerance) {
+      out.settled = true;
+      return out;
+    }
+    // Otherwise minimise again with the union of the two sets, which only grows; once it
+    // holds the set built at its own minimum, that minimum misses no contact and the segment
+    // goes on with the union.
+    const ContactCandidates merged = merge_contact_pairs(pairs, own_pairs);
+    if (round > 0 && merged.size() == pairs.size()) {
+      // Newton may stop on its decrement with the force above the corrector's tolerance.
+      Eigen::VectorXd gu;
+      family.evaluate(out.x, phi, &gu, nullptr);
+      for (const Eigen::Index i : fixed) gu[i] = 0.0;
+      const double residual = gu.lpNorm<Eigen::Infinity>();
+      if (residual > relaxation.gradient_tolerance) {
+        out.message = "round " + std::to_string(round + 1) + ": the minimum's force " +
+                      std::to_string(residual) + " N exceeds the tolerance " +
+                      std::to_string(relaxation.gradient_tolerance) + " N";
+        return out;
+      }
+      out.settled = true;
+      out.pairs = pairs;
+      return out;
+    }
+    pairs = merged;
+  }
+  out.message =
+      "not an equilibrium of the pair set built at its minimum, nor of a union of "
+      "such sets, after " +
+      std::to_string(kRounds) + " rounds";
+  return out;
+}
+
+}  // namespace
+
 ContactBranchTrace trace_contact_branch(
     const ShellModel& model, const ContactProxy& proxy, const Eigen::Ref<const Eigen::VectorXd>& x0,
     double phi0, const Eigen::Ref<const Eigen::VectorXd>& direction_state,
@@ -174,6 +251,9 @@ ContactBranchTrace trace_contact_branch(
   bool safeguarded = false;
   // This segment's start failed that too and was relaxed by minimisation.
   bool relaxed = false;
+  // The pair set of the next segment, where its relaxed start is an equilibrium of a union of
+  // sets rather than of the set built at it (relax_segment_start).
+  std::optional<ContactCandidates> relaxed_start_pairs;
   // The step control's growth pause after a failed step (ArclengthOptions::
   // growth_pause_after_failure), carried from segment to segment.
   int growth_pause = arc.initial_growth_pause;
@@ -184,8 +264,9 @@ ContactBranchTrace trace_contact_branch(
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
     const ContactCandidates pairs =
-        near_contact_pairs(proxy, start_x, options.contact_distance + margin,
-                           options.exclusion_radius, options.selection);
+        relaxed_start_pairs ? *std::exchange(relaxed_start_pairs, std::nullopt)
+                            : near_contact_pairs(proxy, start_x, options.contact_distance + margin,
+                                                 options.exclusion_radius, options.selection);
     out.cost.pair_search_seconds += seconds_since(t0);
     const std::vector<Eigen::Index> pins =
         rigid_pins_for_state(model, start_x, segment_fixed, options);
@@ -353,22 +434,33 @@ ContactBranchTrace trace_contact_branch(
         ++out.cost.safeguarded_starts;
         continue;
       }
+      std::string relaxation_note;
       if (!relaxed && options.start_relaxation && !subspace) {
         // The minimum of the rebuilt set's energy next to the start, found by a minimisation
-        // whose line search keeps it from diverging.
+        // whose line search keeps it from diverging. The next segment's set is built at that
+        // minimum, where a vertex's nearest triangle can differ again: the minimisation is
+        // repeated on the set built at its result until the result is an equilibrium of it.
         relaxed = true;
         ++out.cost.relaxed_starts;
         NewtonOptions relaxation = *options.start_relaxation;
         relaxation.max_travel = std::min(relaxation.max_travel, margin);
-        ObjectiveAtParameter at(family, start_phi);
-        const NewtonResult r = NewtonSolver(relaxation).minimize(at, start_x, segment_fixed);
-        if (r.status == NewtonStatus::Converged) {
+        // The corrector starts from the minimum only if its force is within the corrector's
+        // tolerance; a minimisation stopped by its decrement can leave it 100 times above on
+        // the penalty's stiff Hessian (measured: 1.5e-4 N against 1e-6 N).
+        relaxation.gradient_tolerance =
+            std::min(relaxation.gradient_tolerance, arc.gradient_tolerance);
+        relaxation.decrement_tolerance = 0.0;
+        const StartRelaxation r = relax_segment_start(model, proxy, start_x, start_phi, pairs,
+                                                      segment_fixed, margin, relaxation, options);
+        if (r.settled) {
           start_x = r.x;
+          relaxed_start_pairs = r.pairs;
           continue;
         }
+        relaxation_note = "; relaxed on the rebuilt pair set: " + r.message;
       }
       out.message = "segment start at phi_e = " + std::to_string(start_phi) +
-                    " did not converge: " + trace.message;
+                    " did not converge: " + trace.message + relaxation_note;
       break;
     }
     if (trace.reached_bound && trace.message != "reached max_steps") {

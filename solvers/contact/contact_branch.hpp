@@ -80,9 +80,13 @@ struct ContactBranchOptions {
   /// rebuilt pair set by energy minimisation (NewtonSolver with these options, fixed_dofs held,
   /// max_travel at most the candidate margin, so that no pair outside the set can close in)
   /// and the segment starts from the minimum, an equilibrium of the rebuilt set where the
-  /// corrector's Newton updates diverged. Minimisation keeps to a stable branch: a start whose
-  /// relaxation does not converge within the travel, or a trace in a subspace, ends as before.
-  /// Unset: the trace ends at once.
+  /// corrector's Newton updates diverged. The set is then built again at the minimum; where a
+  /// vertex's nearest triangle differs there (a vertex in a valley of the other layer flips
+  /// between its sides), the minimisation is repeated with the union of the sets, up to six
+  /// rounds, and the segment goes on with the union once its minimum misses no pair of its
+  /// own. Minimisation keeps to a stable branch: a start whose relaxation does not converge
+  /// within the travel or settle, or a trace in a subspace, ends as before, the message
+  /// saying why. Unset: the trace ends at once.
   std::optional<NewtonOptions> start_relaxation;
   /// If set (a subspace of the model's unknowns), the branch is traced in it
   /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it

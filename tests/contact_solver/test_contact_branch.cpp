@@ -11,7 +11,8 @@
 //  - traced in the disc's two-mirror subspace, the symmetric branch has the full-space
 //    branch's energies and stability loss, and every sample keeps both mirrors;
 //  - trace_econe_branches: first contact, the symmetric branch's stability loss, a lower
-//    skewed state found and followed;
+//    skewed state found and followed; from a state with both mirrors a mode odd under one is
+//    pushed one way, the other push relaxing to a state of the same energy;
 //  - grow_with_contact: every state through contact a strict minimum (reduced Lagrangian count
 //    0), no pair closer than h - h/20; a path split at a step and grown on from its last
 //    state gives the same states (what a resumed winding relies on);
@@ -48,6 +49,8 @@
 #include "solvers/continuation/growth_path.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
+#include "solvers/stability/lowest_eigenpairs.hpp"
+#include "solvers/stability/mode_symmetry_class.hpp"
 #include "support/grown_disc.hpp"
 
 namespace growshell {
@@ -56,6 +59,16 @@ namespace {
 using test_support::disc;
 using test_support::GrownDisc;
 constexpr double kH = GrownDisc::kH;
+
+/// The grown disc's fold pattern has crept round against the mesh (natural growth steps), so
+/// its mirrors are not the mesh's: the cone entered by continuation instead, whose folds lie
+/// on the mesh's mirror axes, cut back before first contact (phi_e 6.0).
+ContactFreeCone mirror_aligned_cone(GrownDisc& d) {
+  ContactFreeConeOptions cone_options = d.cone_options(0.5 * std::numbers::pi);
+  cone_options.arclength.gradient_tolerance = 1e-7 * d.model.natural_force_scale();
+  cone_options.arclength.parameter_max = 6.0;
+  return trace_contact_free_cone(d.model, d.proxy, d.pinned, cone_options);
+}
 
 TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
   GrownDisc& d = disc();
@@ -95,6 +108,61 @@ TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
                 1e-3 * std::abs(a.energy_slope))
         << "between phi_e = " << a.sample.parameter << " and " << b.sample.parameter;
   }
+}
+
+// ContactBranchOptions::start_relaxation: a start the corrector cannot converge (here one
+// iteration allowed for a start pushed off the branch) is relaxed by minimisation at its
+// phi_e and the trace goes on from the minimum, the branch's state there; without it the
+// trace ends at the start, naming it.
+TEST(ContactBranch, AStartTheCorrectorCannotConvergeIsRelaxedAndTheTraceGoesOn) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  // A smooth bump of 0.2 h, none at the pinned dofs (they keep the gauge of x).
+  Eigen::VectorXd pushed = x;
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const double r2 = x(3 * v) * x(3 * v) + x(3 * v + 1) * x(3 * v + 1);
+    pushed(3 * v + 2) += 0.2 * kH * std::exp(-4.0 * r2);
+  }
+  for (const Eigen::Index i : d.pinned) pushed(i) = x(i);
+  ContactBranchOptions o = d.options();
+  o.arclength.max_steps = 3;
+  o.arclength.start_corrector_iterations = 1;
+  o.start_residual_backtracks = 0;  // no second try with halved updates
+  const auto trace = [&](const ContactBranchOptions& options,
+                         std::vector<ContactBranchSample>& samples) {
+    return trace_contact_branch(d.model, d.proxy, pushed, GrownDisc::kStart,
+                                Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, options,
+                                [&](const ContactBranchSample& s) { samples.push_back(s); });
+  };
+  std::vector<ContactBranchSample> ended;
+  const ContactBranchTrace without = trace(o, ended);
+  EXPECT_TRUE(ended.empty());
+  EXPECT_EQ(without.steps, 0);
+  EXPECT_NE(without.message.find("segment start at phi_e = 5.000000 did not converge"),
+            std::string::npos)
+      << without.message;
+
+  NewtonOptions relaxation;
+  relaxation.gradient_tolerance = o.arclength.gradient_tolerance;
+  relaxation.max_iterations = 100;
+  o.start_relaxation = relaxation;
+  std::vector<ContactBranchSample> samples;
+  const ContactBranchTrace with = trace(o, samples);
+  EXPECT_EQ(with.cost.relaxed_starts, 1);
+  EXPECT_EQ(with.steps, 3) << with.message;
+  ASSERT_FALSE(samples.empty());
+  // The trace starts on the branch at phi_e = 5: an equilibrium with the unpushed state's
+  // energy. (Not the same state: the fold pattern's turn against the mesh is nearly free, and
+  // the minimum reached lies 1.2e-3 m from it, a tenth of the push.)
+  const ContactBranchSample& first = samples.front();
+  EXPECT_NEAR(first.sample.parameter, GrownDisc::kStart, 1e-12);
+  Eigen::VectorXd g;
+  const double e = d.model.evaluate(first.sample.x, GrownDisc::kStart, &g, nullptr);
+  for (const Eigen::Index i : d.pinned) g[i] = 0.0;
+  EXPECT_LE(g.lpNorm<Eigen::Infinity>(), o.arclength.gradient_tolerance);
+  const double e0 = d.model.evaluate(x, GrownDisc::kStart, nullptr, nullptr);
+  EXPECT_NEAR(e, e0, 1e-8 * e0);
+  EXPECT_LT((first.sample.x - x).cwiseAbs().maxCoeff(), 0.2 * 0.2 * kH);
 }
 
 // ContactBranchOptions::stability_index_for_segment: the samples carry the caller's count, and
@@ -355,13 +423,7 @@ TEST(ContactBranch, SetsOfEveryNearTriangleHoldTheClosePairsAndDoNotChangeTheEne
 // rigid motion (the trace runs in the subspace's frame and hands states back in the caller's).
 TEST(ContactBranch, InTheMirrorSubspaceTheSymmetricBranchKeepsItsMirrorsAndItsStabilityLoss) {
   GrownDisc& d = disc();
-  // The grown disc's fold pattern has crept round against the mesh (natural growth steps), so
-  // its mirrors are not the mesh's: start from the cone entered by continuation instead, whose
-  // folds lie on the mesh's mirror axes, cut back before first contact.
-  ContactFreeConeOptions cone_options = d.cone_options(0.5 * std::numbers::pi);
-  cone_options.arclength.gradient_tolerance = 1e-7 * d.model.natural_force_scale();
-  cone_options.arclength.parameter_max = 6.0;
-  const ContactFreeCone cone = trace_contact_free_cone(d.model, d.proxy, d.pinned, cone_options);
+  const ContactFreeCone cone = mirror_aligned_cone(d);
   ASSERT_TRUE(cone.found) << cone.message;
   const double phi0 = cone.start.parameter;
   const Eigen::VectorXd x = cone.start.x;
@@ -508,6 +570,65 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
     }
   }
   EXPECT_GT(skewed, 3);
+}
+
+// The skewed search from a state with both mirrors: a negative mode odd under a mirror is
+// pushed one way only, since the opposite push is (up to the pins) the first's mirror image.
+// Checked here independently: the push left out, relaxed by hand, reaches the search's energy.
+TEST(EconeBranches, ASearchModeOddUnderAMirrorIsPushedOneWayAndTheOtherWayRelaxesToItsImage) {
+  GrownDisc& d = disc();
+  const ContactFreeCone cone = mirror_aligned_cone(d);
+  ASSERT_TRUE(cone.found) << cone.message;
+  EconeBranchOptions o;
+  o.contact = d.options();
+  o.contact.symmetric_subspace =
+      std::make_shared<const SymmetricSubspace>(two_mirror_subspace(d.model, 1e-9));
+  o.symmetric_end = 6.5;  // past the stability loss at 6.408: the top has a negative mode
+  o.max_steps_per_branch = 80;
+  o.relaxation.gradient_tolerance = 1e-7 * d.model.natural_force_scale();
+  o.relaxation.max_iterations = 400;
+  // The skewed branch itself is not what this test is about: its traces end at once.
+  o.skewed_min = 6.499;
+  o.skewed_end = 6.5;
+  const EconeBranchResult r =
+      trace_econe_branches(d.model, d.proxy, cone.start.x, cone.start.parameter, d.pinned, o, {});
+  ASSERT_TRUE(r.stability_loss.has_value());
+  EXPECT_EQ(r.skewed_pushes_skipped_as_images, 1) << r.skewed_message;
+  EXPECT_EQ(r.skewed_pushes_relaxed, 1) << r.skewed_message;
+  EXPECT_NE(r.skewed_message.find("push -1: not relaxed, next to the image of push 1"),
+            std::string::npos)
+      << r.skewed_message;
+  ASSERT_TRUE(r.skewed_found) << r.skewed_message;
+
+  // The push the search left out, by hand, as the search makes it.
+  const Eigen::VectorXd& top = r.symmetric.last.sample.x;
+  const double phi = r.symmetric.last.sample.parameter;
+  const std::vector<Eigen::Index> pins = rigid_pins_for_state(d.model, top, d.pinned, o.contact);
+  PenalizedShell near(d.model, d.proxy, near_penalty_pairs(d.proxy, top, o.contact), o.contact);
+  ObjectiveAtParameter near_at(near.energy, phi);
+  EigenpairOptions eig;
+  eig.count = 1;
+  const Eigenpairs lowest = lowest_eigenpairs(near_at, top, pins, eig);
+  ASSERT_LT(lowest.values[0], 0.0);
+  // The mode, without the rigid motion the pins gave it, lies in a class odd under a mirror,
+  // taken in the frame where the mirrors are the coordinate planes.
+  const SymmetricSubspace& mirrors = *o.contact.symmetric_subspace;
+  const RigidMotion frame = mirrors.aligning_motion(top);
+  const Eigen::VectorXd mode = lowest.vectors.col(0);
+  const ModeSymmetryClass c = mode_symmetry_class(
+      mirrors.group(), without_rigid_velocity(frame.apply(top), frame.rotate(mode)));
+  EXPECT_FALSE(c.trivial());
+  EXPECT_GT(c.weight, 0.99);  // measured 0.9959
+  Eigen::VectorXd y = top - (o.push * kH / mode.cwiseAbs().maxCoeff()) * mode;
+  const ContactRelaxation relaxed =
+      relax_with_contact(d.model, phi, d.proxy, y, pins, o.contact, o.relaxation);
+  ASSERT_TRUE(relaxed.relaxed) << relaxed.message;
+  // It relaxes to a state of the search's energy, 1.4 % below the symmetric top. The two
+  // differ by the relaxations' tolerance, the mode's part outside its class and the
+  // nearest-triangle pair sets, which the mirrors do not map onto themselves
+  // (docs/contact.md); measured 5.5e-9 relative with a tolerance 1e-7 of the force scale.
+  EXPECT_NEAR(relaxed.energy, r.skewed_relaxed_energy, 1e-7 * r.skewed_relaxed_energy);
+  EXPECT_LT(relaxed.energy, (1.0 - 1e-2) * r.symmetric_top_energy);
 }
 
 // grow_with_contact: natural steps through first contact, each a strict minimum of shell +

@@ -33,5 +33,29 @@ TEST(RigidVelocityFields, NeedThreeEntriesPerVertex) {
   EXPECT_THROW(rigid_velocity_fields(Eigen::VectorXd::Zero(7)), std::invalid_argument);
 }
 
+TEST(WithoutRigidVelocity, RemovesExactlyTheRigidPartOfAVector) {
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(30, -0.7, 1.3).array().sin();
+  const Eigen::MatrixXd fields = rigid_velocity_fields(x, Eigen::Vector3d(0.3, 0.1, -0.2));
+  // A vector orthogonal to every rigid field, plus a rigid motion about another centre.
+  Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(30, 0.4, 2.9).array().cos();
+  const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(fields).householderQ() *
+                            Eigen::MatrixXd::Identity(30, 6);
+  w -= Q * (Q.transpose() * w);
+  Eigen::Matrix<double, 6, 1> a;
+  a << 0.5, -1.0, 0.25, 2.0, -0.3, 0.7;
+  const Eigen::VectorXd v = w + fields * a;
+  EXPECT_LT((without_rigid_velocity(x, v) - w).cwiseAbs().maxCoeff(), 1e-14);
+  // A rigid field alone has nothing left, and the result is orthogonal to every field.
+  EXPECT_LT(without_rigid_velocity(x, fields.col(4)).norm(), 1e-14);
+  EXPECT_LT((fields.transpose() * without_rigid_velocity(x, v)).cwiseAbs().maxCoeff(), 1e-13);
+}
+
+TEST(WithoutRigidVelocity, RefusesMismatchedSizesAndFewerThanThreeVertices) {
+  EXPECT_THROW(without_rigid_velocity(Eigen::VectorXd::Ones(12), Eigen::VectorXd::Ones(9)),
+               std::invalid_argument);
+  EXPECT_THROW(without_rigid_velocity(Eigen::VectorXd::Ones(6), Eigen::VectorXd::Ones(6)),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace growshell

@@ -27,9 +27,12 @@
 #include "solvers/stability/subspace_rigid_motions.hpp"
 #include "solvers/stability/symmetry_class_stability_index.hpp"
 #include "solvers/stability/vertex_symmetry_group.hpp"
+#include "support/vertex_symmetry_action.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::apply;
 
 constexpr double kThickness = 0.05;
 
@@ -68,15 +71,6 @@ Eigen::VectorXd flat_equilibrium(const ShellModel& model, double phi_e) {
   for (Eigen::Index v = 0; v < r.x.size() / 3; ++v) lift = std::max(lift, std::abs(r.x(3 * v + 2)));
   EXPECT_LT(lift, 1e-12);
   return r.x;
-}
-
-/// (T_g x)_{image[v]} = S_g x_v.
-Eigen::VectorXd apply(const VertexSymmetry& g, const Eigen::VectorXd& x) {
-  Eigen::VectorXd out(x.size());
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
-    out.segment<3>(3 * g.image[static_cast<std::size_t>(v)]) =
-        g.signs.cwiseProduct(x.segment<3>(3 * v));
-  return out;
 }
 
 TEST(VertexSymmetryGroup, ClassesOfTwoMirrorsSplitTheSpaceWithTheirSigns) {
