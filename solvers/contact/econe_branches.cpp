@@ -211,10 +211,11 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
     for (Eigen::Index k = 0; k < lowest.values.size(); ++k) m << ' ' << lowest.values[k];
     m << ";";
     // Where the start has the mirrors the symmetric branch was traced with (up to the rigid
-    // motion between the subspace's frame and the caller's), a mode that lies in a class odd
-    // under a mirror s (T_s v = -v in that frame) makes the two pushes images of each other
-    // under s, and only the first is relaxed. The modes of the pinned Hessian lie in a class
-    // only up to the pins, so the second push starts next to the first's image, not on it.
+    // motion between the subspace's frame and the caller's), each mode's class is noted; a mode
+    // that lies in a class odd under a mirror s (T_s v = -v in that frame) makes the two pushes
+    // images of each other under s, and with one_push_per_mirror_pair only the first is
+    // relaxed. The modes of the pinned Hessian lie in a class only up to the pins, so the
+    // second push starts next to the first's image, not on it.
     const SymmetricSubspace* mirrors = o.symmetric_subspace.get();
     std::optional<RigidMotion> to_mirror_frame;
     if (mirrors != nullptr && mirrors->full_dimension() == top.x.size() &&
@@ -240,7 +241,7 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
         m << "), part " << mode_class->weight << ";";
       }
       for (const int sign : {1, -1}) {
-        if (sign < 0 && mode_class && !mode_class->trivial() &&
+        if (sign < 0 && options.one_push_per_mirror_pair && mode_class && !mode_class->trivial() &&
             mode_class->weight >= kMirrorClassModeWeight) {
           m << " mode " << k << " push -1: not relaxed, next to the image of push 1 under "
             << "generator " << mode_class->odd_generator() << " of the mirrors;";

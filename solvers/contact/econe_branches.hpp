@@ -92,6 +92,14 @@ struct EconeBranchOptions {
   /// cheaper than the traced one once contact pairs differ (on gmsh_d4 at h = 0.04, 0.19 %
   /// below it at phi_e = 7.2).
   std::function<bool(const Eigen::VectorXd& x, std::string& why_not)> accept_skewed;
+  /// Where the searched state has the mirrors of contact.symmetric_subspace, push a mode that
+  /// lies (without its rigid motion, to at least 0.99 of its squared norm) in a class odd
+  /// under a mirror one way only: the other push starts next to the first's mirror image.
+  /// Off by default: the relaxations land on one of several nearby skewed minima, and which
+  /// one depends on the push to a few per cent, so the left-out push can be the one that
+  /// finds the lowest (measured at h = 0.02: with it, a state 8.5e-5 above the skewed cone
+  /// that both pushes find, whose branch ends at once; docs/performance.md, session 37).
+  bool one_push_per_mirror_pair = false;
   /// Newton settings of the relaxation (minimisation of shell + penalty at fixed phi_e).
   NewtonOptions relaxation;
   /// Crossings closer than this to the branch point the skewed branch was entered at are the

@@ -587,6 +587,7 @@ TEST(EconeBranches, ASearchModeOddUnderAMirrorIsPushedOneWayAndTheOtherWayRelaxe
   o.max_steps_per_branch = 80;
   o.relaxation.gradient_tolerance = 1e-7 * d.model.natural_force_scale();
   o.relaxation.max_iterations = 400;
+  o.one_push_per_mirror_pair = true;
   // The skewed branch itself is not what this test is about: its traces end at once.
   o.skewed_min = 6.499;
   o.skewed_end = 6.5;
