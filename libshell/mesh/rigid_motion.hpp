@@ -81,7 +81,7 @@ inline Eigen::VectorXd without_rigid_velocity(const Eigen::Ref<const Eigen::Vect
     throw std::invalid_argument("without_rigid_velocity: a state needs at least 3 vertices");
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (Eigen::Index i = 0; i < x.size() / 3; ++i) centre += x.segment<3>(3 * i);
-  if (x.size() > 0) centre /= static_cast<double>(x.size() / 3);
+  centre /= static_cast<double>(x.size() / 3);
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rigid_velocity_fields(x, centre));
   const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(x.size(), 6);
   return v - Q * (Q.transpose() * v);

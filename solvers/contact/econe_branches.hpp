@@ -144,9 +144,9 @@ struct EconeBranchResult {
   /// unstable parts too; the exchange of ground states is the first crossing flagged here.
   std::vector<bool> crossing_skewed_stable;
   double skewed_search_seconds = 0.0;
-  /// Pushes of the search relaxed, and pushes not relaxed because the start has the mirrors of
-  /// the symmetric subspace and the mode is odd under one of them (the push is the image of the
-  /// opposite one, already relaxed).
+  /// Pushes of the search relaxed, and pushes left out by one_push_per_mirror_pair (the start
+  /// has the mirrors of the symmetric subspace and the mode is odd under one of them: the push
+  /// starts next to the image of the opposite one, already relaxed).
   int skewed_pushes_relaxed = 0;
   int skewed_pushes_skipped_as_images = 0;
   /// The Ipopt check of the relaxed skewed state (EconeBranchOptions::verify_with_ipopt).
