@@ -15,6 +15,7 @@
 #include "libshell/mesh/rigid_motion.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
 #include "solvers/contact/contact_growth_path.hpp"
+#include "solvers/contact/lowest_skewed_state.hpp"
 #include "solvers/contact/penalty_warm_start.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/continuation/turning_back_event.hpp"
@@ -204,8 +205,7 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
       PenalizedShell near(model, proxy, near_penalty_pairs(proxy, top.x, o), o);
       out.symmetric_top_energy = near.energy.evaluate(top.x, top.parameter, nullptr, nullptr);
     }
-    double best_energy = out.symmetric_top_energy;
-    Eigen::VectorXd best;
+    LowestSkewedState choice(out.symmetric_top_energy, options.energy_margin);
     std::ostringstream m;
     m << "lowest eigenvalues at phi_e = " << top.parameter << ":";
     for (Eigen::Index k = 0; k < lowest.values.size(); ++k) m << ' ' << lowest.values[k];
@@ -268,17 +268,14 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
         m << " mode " << k << " push " << sign << ": energy " << energy << " (symmetric "
           << out.symmetric_top_energy << ")" << (crossed ? ", passes through itself" : "")
           << (accepted ? "" : ", not skewed: " + why_not) << cost << ";";
-        if (!crossed && accepted &&
-            energy < best_energy - options.energy_margin * std::abs(out.symmetric_top_energy)) {
-          best_energy = energy;
-          best = y;
-        }
+        if (!crossed && accepted) choice.offer(energy, y);
       }
     }
     out.skewed_search_seconds = std::chrono::duration<double>(Clock::now() - t_search).count();
     out.skewed_message = m.str();
     note(out.skewed_message);
-    if (best.size() > 0 && options.verify_with_ipopt) {
+    const Eigen::VectorXd& best = choice.state();
+    if (choice.found() && options.verify_with_ipopt) {
       const auto t_ipopt = Clock::now();
       // Seeded with the penalty's own pair forces (penalty_warm_start.hpp).
       const ContactSolveResult seed = penalty_warm_start(
@@ -302,9 +299,9 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
         << " m, smallest distance " << check.min_distance;
       note(c.str());
     }
-    if (best.size() > 0) {
+    if (choice.found()) {
       out.skewed_found = true;
-      out.skewed_relaxed_energy = best_energy;
+      out.skewed_relaxed_energy = choice.energy();
       if (options.skewed_subspace) {
         const std::string mismatch = subspace_start_mismatch(*options.skewed_subspace, best,
                                                              0.1 * h_c, "the skewed branch");

@@ -84,7 +84,8 @@ struct EconeBranchOptions {
   /// (small enough that no layer is pushed through another).
   double push = 0.5;
   /// A relaxed state counts as a different (skewed) state only if its energy is lower than
-  /// the symmetric one by this fraction.
+  /// the symmetric one by this fraction; the lowest of those is traced, however close the
+  /// others (lowest_skewed_state.hpp).
   double energy_margin = 1e-4;
   /// If set, a relaxed state counts as skewed only if this accepts it, and the reason it gives
   /// otherwise goes to skewed_message. E.g. the cone studies reject a state that keeps the
