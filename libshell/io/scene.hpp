@@ -247,9 +247,10 @@ struct SceneStudy {
   /// about the growth axis, which they keep while breaking both mirrors (docs/continuation.md,
   /// "Symmetric subspace"); half the unknowns, and the stability index stays the full
   /// Hessian's. A mesh without the half turn, or a start without it, is traced in the full
-  /// space, with a note. Off by default: on the ctest's scene these traces end at a segment
-  /// start after a pair-set rebuild (the skewed branch at 6.92 instead of its fold at 5.27),
-  /// where the full space goes on.
+  /// space, with a note. Off by default: with the pair sets closed under the half turn the Fig. 4
+  /// scene at h = 0.04 gives every key of the full space to 1e-5 with its traces 1.8 times
+  /// faster, but on the ctest's coarse scene the turned cone's upward trace ends at a segment
+  /// start (7.151) that the full space passes (docs/performance.md, session 38).
   bool half_turn_subspace = false;
   /// Count the stability index without the pattern's turn about the growth axis: the neutral
   /// mode of the axisymmetric sheet that a discrete mesh leaves only nearly neutral, of either

@@ -11,6 +11,7 @@
 
 #include "core/objective_at_parameter.hpp"
 #include "libshell/contact/contact_penalty.hpp"
+#include "libshell/contact/equivariant_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
@@ -250,13 +251,22 @@ ContactBranchTrace trace_contact_branch(
   // A set of every near triangle must hold a sample's close pairs themselves, not just a pair
   // of the same vertex.
   const bool exact_cover = !options.selection.nearest_triangle_only;
+  // The subspace's symmetries as maps of the proxy, for pair sets closed under them.
+  std::vector<ProxySymmetry> proxy_group;
+  if (subspace && options.symmetric_pair_sets && options.selection.nearest_triangle_only) {
+    std::vector<Eigen::Vector3d> signs;
+    for (const VertexSymmetry& g : subspace->group().generators()) signs.push_back(g.signs);
+    proxy_group = proxy_symmetry_group(
+        proxy, signs, 1e-9 * std::max(1.0, proxy.reference_positions.cwiseAbs().maxCoeff()));
+  }
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
-    const ContactCandidates pairs =
+    ContactCandidates pairs =
         relaxed_start_pairs ? *std::exchange(relaxed_start_pairs, std::nullopt)
                             : near_contact_pairs(proxy, start_x, options.contact_distance + margin,
                                                  options.exclusion_radius, options.selection);
+    if (!proxy_group.empty()) pairs = equivariant_nearest_pairs(pairs, proxy_group);
     out.cost.pair_search_seconds += seconds_since(t0);
     const std::vector<Eigen::Index> pins =
         rigid_pins_for_state(model, start_x, segment_fixed, options);

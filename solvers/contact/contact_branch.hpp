@@ -48,6 +48,11 @@ struct ContactBranchOptions {
   /// Without nearest_triangle_only a sample's close pairs must be in the set themselves (with
   /// it, any pair of the same vertex covers a vertex-triangle pair).
   NearPairSelection selection{false, true};
+  /// In a symmetric subspace with nearest_triangle_only, each segment's set is closed under
+  /// the subspace's symmetries (libshell/contact/equivariant_pairs.hpp): where a vertex is
+  /// equidistant from two triangles, rounding otherwise picks for it and for its image
+  /// independently, and the penalty lacks the symmetry the subspace assumes.
+  bool symmetric_pair_sets = true;
   int steps_per_segment = 6;  ///< steps before the pair set is rebuilt, >= 1
   /// If > 0, fixed_dofs must be the six rigid-motion pins (rigid_motion_pinned_dofs): a
   /// segment whose start state holds them with a condition number above this
