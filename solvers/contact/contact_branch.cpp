@@ -155,7 +155,8 @@ StartRelaxation relax_segment_start(const ShellModel& model, const ContactProxy&
                                     const Eigen::VectorXd& start, double phi,
                                     ContactCandidates pairs, const std::vector<Eigen::Index>& fixed,
                                     double margin, const NewtonOptions& relaxation,
-                                    const ContactBranchOptions& options) {
+                                    const ContactBranchOptions& options,
+                                    const std::vector<ProxySymmetry>& proxy_group) {
   constexpr int kRounds = 6;
   StartRelaxation out;
   out.x = start;
@@ -170,9 +171,11 @@ StartRelaxation relax_segment_start(const ShellModel& model, const ContactProxy&
       return out;
     }
     out.x = r.x;
-    const ContactCandidates own_pairs =
+    ContactCandidates own_pairs =
         near_contact_pairs(proxy, out.x, options.contact_distance + margin,
                            options.exclusion_radius, options.selection);
+    // In a subspace the sets are closed under its symmetries, and so is their union.
+    if (!proxy_group.empty()) own_pairs = equivariant_nearest_pairs(own_pairs, proxy_group);
     ContactPenalty own(proxy, own_pairs, options.contact_distance, options.stiffness,
                        model.dimension(), options.gap);
     PenalizedEnergy own_family(model, own);
@@ -262,11 +265,14 @@ ContactBranchTrace trace_contact_branch(
   while (out.steps < arc.max_steps) {
     // The pair set of this segment: pairs near its start.
     auto t0 = Clock::now();
-    ContactCandidates pairs =
-        relaxed_start_pairs ? *std::exchange(relaxed_start_pairs, std::nullopt)
-                            : near_contact_pairs(proxy, start_x, options.contact_distance + margin,
-                                                 options.exclusion_radius, options.selection);
-    if (!proxy_group.empty()) pairs = equivariant_nearest_pairs(pairs, proxy_group);
+    ContactCandidates pairs;
+    if (relaxed_start_pairs) {
+      pairs = *std::exchange(relaxed_start_pairs, std::nullopt);  // closed where it must be
+    } else {
+      pairs = near_contact_pairs(proxy, start_x, options.contact_distance + margin,
+                                 options.exclusion_radius, options.selection);
+      if (!proxy_group.empty()) pairs = equivariant_nearest_pairs(pairs, proxy_group);
+    }
     out.cost.pair_search_seconds += seconds_since(t0);
     const std::vector<Eigen::Index> pins =
         rigid_pins_for_state(model, start_x, segment_fixed, options);
@@ -435,7 +441,7 @@ ContactBranchTrace trace_contact_branch(
         continue;
       }
       std::string relaxation_note;
-      if (!relaxed && options.start_relaxation && !subspace) {
+      if (!relaxed && options.start_relaxation) {
         // The minimum of the rebuilt set's energy next to the start, found by a minimisation
         // whose line search keeps it from diverging. The next segment's set is built at that
         // minimum, where a vertex's nearest triangle can differ again: the minimisation is
@@ -450,8 +456,12 @@ ContactBranchTrace trace_contact_branch(
         relaxation.gradient_tolerance =
             std::min(relaxation.gradient_tolerance, arc.gradient_tolerance);
         relaxation.decrement_tolerance = 0.0;
-        const StartRelaxation r = relax_segment_start(model, proxy, start_x, start_phi, pairs,
-                                                      segment_fixed, margin, relaxation, options);
+        // In a subspace the minimisation runs in the full space, from a symmetric start on a
+        // symmetric energy (the sets closed under the subspace's symmetries), and the next
+        // segment aligns and projects its result.
+        const StartRelaxation r =
+            relax_segment_start(model, proxy, start_x, start_phi, pairs, segment_fixed, margin,
+                                relaxation, options, proxy_group);
         if (r.settled) {
           start_x = r.x;
           relaxed_start_pairs = r.pairs;

@@ -81,7 +81,7 @@ struct ContactBranchOptions {
   /// ends at once. Only starts that would otherwise end the trace are retried, so a trace that
   /// never meets one is the same with or without it.
   int start_residual_backtracks = 10;
-  /// If set, a start of a full-space trace that fails even that is relaxed at its phi_e on the
+  /// If set, a segment start that fails even that is relaxed at its phi_e on the
   /// rebuilt pair set by energy minimisation (NewtonSolver with these options, fixed_dofs held,
   /// max_travel at most the candidate margin, so that no pair outside the set can close in)
   /// and the segment starts from the minimum, an equilibrium of the rebuilt set where the
@@ -89,9 +89,11 @@ struct ContactBranchOptions {
   /// vertex's nearest triangle differs there (a vertex in a valley of the other layer flips
   /// between its sides), the minimisation is repeated with the union of the sets, up to six
   /// rounds, and the segment goes on with the union once its minimum misses no pair of its
-  /// own. Minimisation keeps to a stable branch: a start whose relaxation does not converge
-  /// within the travel or settle, or a trace in a subspace, ends as before, the message
-  /// saying why. Unset: the trace ends at once.
+  /// own. In a symmetric subspace the minimisation runs in the full space on sets closed
+  /// under the subspace's symmetries (symmetric_pair_sets), and the next segment aligns and
+  /// projects its result. Minimisation keeps to a stable branch: a start whose relaxation
+  /// does not converge within the travel or settle ends as before, the message saying why.
+  /// Unset: the trace ends at once.
   std::optional<NewtonOptions> start_relaxation;
   /// If set (a subspace of the model's unknowns), the branch is traced in it
   /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it

@@ -70,6 +70,25 @@ ContactFreeCone mirror_aligned_cone(GrownDisc& d) {
   return trace_contact_free_cone(d.model, d.proxy, d.pinned, cone_options);
 }
 
+// A smooth axisymmetric bump of 0.2 h on x, none at the pinned dofs (they keep x's gauge).
+Eigen::VectorXd pushed_by_bump(const GrownDisc& d, const Eigen::VectorXd& x) {
+  Eigen::VectorXd pushed = x;
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
+    const double r2 = x(3 * v) * x(3 * v) + x(3 * v + 1) * x(3 * v + 1);
+    pushed(3 * v + 2) += 0.2 * kH * std::exp(-4.0 * r2);
+  }
+  for (const Eigen::Index i : d.pinned) pushed(i) = x(i);
+  return pushed;
+}
+
+// The relaxation of starts with the corrector's force tolerance, 100 iterations.
+NewtonOptions start_relaxation_for(const ContactBranchOptions& o) {
+  NewtonOptions relaxation;
+  relaxation.gradient_tolerance = o.arclength.gradient_tolerance;
+  relaxation.max_iterations = 100;
+  return relaxation;
+}
+
 TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
   GrownDisc& d = disc();
   const Eigen::VectorXd& x = d.start();
@@ -117,13 +136,7 @@ TEST(ContactBranch, FarFromContactItIsThePlainContinuation) {
 TEST(ContactBranch, AStartTheCorrectorCannotConvergeIsRelaxedAndTheTraceGoesOn) {
   GrownDisc& d = disc();
   const Eigen::VectorXd& x = d.start();
-  // A smooth bump of 0.2 h, none at the pinned dofs (they keep the gauge of x).
-  Eigen::VectorXd pushed = x;
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
-    const double r2 = x(3 * v) * x(3 * v) + x(3 * v + 1) * x(3 * v + 1);
-    pushed(3 * v + 2) += 0.2 * kH * std::exp(-4.0 * r2);
-  }
-  for (const Eigen::Index i : d.pinned) pushed(i) = x(i);
+  const Eigen::VectorXd pushed = pushed_by_bump(d, x);
   ContactBranchOptions o = d.options();
   o.arclength.max_steps = 3;
   o.arclength.start_corrector_iterations = 1;
@@ -142,10 +155,7 @@ TEST(ContactBranch, AStartTheCorrectorCannotConvergeIsRelaxedAndTheTraceGoesOn) 
             std::string::npos)
       << without.message;
 
-  NewtonOptions relaxation;
-  relaxation.gradient_tolerance = o.arclength.gradient_tolerance;
-  relaxation.max_iterations = 100;
-  o.start_relaxation = relaxation;
+  o.start_relaxation = start_relaxation_for(o);
   std::vector<ContactBranchSample> samples;
   const ContactBranchTrace with = trace(o, samples);
   EXPECT_EQ(with.cost.relaxed_starts, 1);
@@ -163,6 +173,58 @@ TEST(ContactBranch, AStartTheCorrectorCannotConvergeIsRelaxedAndTheTraceGoesOn) 
   const double e0 = d.model.evaluate(x, GrownDisc::kStart, nullptr, nullptr);
   EXPECT_NEAR(e, e0, 1e-8 * e0);
   EXPECT_LT((first.sample.x - x).cwiseAbs().maxCoeff(), 0.2 * 0.2 * kH);
+}
+
+// The same in the mirror subspace: the start, pushed by an axisymmetric bump that keeps both
+// mirrors, is relaxed in the full space on pair sets closed under the mirrors, and the trace
+// goes on in the subspace with every sample mirror-symmetric (up to the rigid motion of its
+// frame) and an equilibrium of the full space's energy.
+TEST(ContactBranch, InASubspaceAStartThatCannotConvergeIsRelaxedAndKeepsTheSymmetry) {
+  GrownDisc& d = disc();
+  const ContactFreeCone cone = mirror_aligned_cone(d);
+  ASSERT_TRUE(cone.found) << cone.message;
+  const double phi0 = cone.start.parameter;
+  const Eigen::VectorXd& x = cone.start.x;
+  const Eigen::VectorXd pushed = pushed_by_bump(d, x);
+  auto subspace = std::make_shared<const SymmetricSubspace>(two_mirror_subspace(d.model, 1e-9));
+  ContactBranchOptions o = d.options();
+  o.symmetric_subspace = subspace;
+  o.arclength.max_steps = 3;
+  o.arclength.start_corrector_iterations = 1;
+  o.start_residual_backtracks = 0;
+  const auto trace = [&](const ContactBranchOptions& options,
+                         std::vector<ContactBranchSample>& samples) {
+    return trace_contact_branch(d.model, d.proxy, pushed, phi0, Eigen::VectorXd::Zero(x.size()),
+                                1.0, d.pinned, options,
+                                [&](const ContactBranchSample& s) { samples.push_back(s); });
+  };
+  std::vector<ContactBranchSample> ended;
+  const ContactBranchTrace without = trace(o, ended);
+  EXPECT_TRUE(ended.empty());
+  EXPECT_NE(without.message.find("did not converge"), std::string::npos) << without.message;
+
+  o.start_relaxation = start_relaxation_for(o);
+  std::vector<ContactBranchSample> samples;
+  const ContactBranchTrace with = trace(o, samples);
+  EXPECT_EQ(with.cost.relaxed_starts, 1);
+  EXPECT_EQ(with.steps, 3) << with.message;
+  ASSERT_EQ(samples.size(), 4u);
+  for (const ContactBranchSample& s : samples) {
+    const Eigen::VectorXd aligned = subspace->aligning_motion(s.sample.x).apply(s.sample.x);
+    EXPECT_LT(subspace->asymmetry(aligned), 1e-10) << "at phi_e = " << s.sample.parameter;
+  }
+  // The first sample: an equilibrium at phi0 of the full energy with the pairs near it.
+  const ContactBranchSample& first = samples.front();
+  EXPECT_NEAR(first.sample.parameter, phi0, 1e-12);
+  const ContactCandidates near =
+      near_contact_pairs(d.proxy, first.sample.x, o.contact_distance + o.candidate_margin,
+                         o.exclusion_radius, o.selection);
+  ContactPenalty penalty(d.proxy, near, o.contact_distance, o.stiffness, x.size(), o.gap);
+  PenalizedEnergy energy(d.model, penalty);
+  Eigen::VectorXd g;
+  energy.evaluate(first.sample.x, phi0, &g, nullptr);
+  for (const Eigen::Index i : d.pinned) g[i] = 0.0;
+  EXPECT_LE(g.lpNorm<Eigen::Infinity>(), 10.0 * o.arclength.gradient_tolerance);
 }
 
 // ContactBranchOptions::stability_index_for_segment: the samples carry the caller's count, and
