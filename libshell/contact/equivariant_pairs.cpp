@@ -18,34 +18,31 @@ std::array<int, 3> sorted_corners(int a, int b, int c) {
   return k;
 }
 
-ProxySymmetry compose(const ProxySymmetry& after, const ProxySymmetry& before) {
-  ProxySymmetry out;
-  out.vertex_image.resize(before.vertex_image.size());
-  out.triangle_image.resize(before.triangle_image.size());
-  for (std::size_t v = 0; v < before.vertex_image.size(); ++v)
-    out.vertex_image[v] = after.vertex_image[static_cast<std::size_t>(before.vertex_image[v])];
-  for (std::size_t t = 0; t < before.triangle_image.size(); ++t)
-    out.triangle_image[t] =
-        after.triangle_image[static_cast<std::size_t>(before.triangle_image[t])];
-  return out;
-}
-
-bool same(const ProxySymmetry& a, const ProxySymmetry& b) {
-  return a.vertex_image == b.vertex_image;  // the triangles follow the vertices
-}
-
 }  // namespace
 
 std::vector<ProxySymmetry> proxy_symmetry_group(const ContactProxy& proxy,
                                                 const std::vector<Eigen::Vector3d>& signs,
                                                 double tolerance) {
+  if (signs.size() > 16)
+    throw std::invalid_argument("proxy_symmetry_group: at most 16 generators, got " +
+                                std::to_string(signs.size()));
   const Eigen::Index nt = proxy.triangles.rows();
   std::map<std::array<int, 3>, int> triangle_of;
   for (Eigen::Index t = 0; t < nt; ++t)
     triangle_of[sorted_corners(proxy.triangles(t, 0), proxy.triangles(t, 1),
                                proxy.triangles(t, 2))] = static_cast<int>(t);
-  std::vector<ProxySymmetry> generators;
-  for (const Eigen::Vector3d& s : signs) {
+  // Diagonal sign matrices commute and square to one: the group is the set of products of
+  // subsets of the generators, the empty product (the identity) first.
+  std::vector<Eigen::Vector3d> elements;
+  for (unsigned subset = 0; subset < (1u << signs.size()); ++subset) {
+    Eigen::Vector3d product = Eigen::Vector3d::Ones();
+    for (std::size_t k = 0; k < signs.size(); ++k)
+      if (subset & (1u << k)) product = product.cwiseProduct(signs[k]);
+    if (std::find(elements.begin(), elements.end(), product) == elements.end())
+      elements.push_back(product);
+  }
+  std::vector<ProxySymmetry> group;
+  for (const Eigen::Vector3d& s : elements) {
     ProxySymmetry g;
     g.vertex_image = find_vertex_symmetry(proxy.reference_positions, s, tolerance).image;
     g.triangle_image.resize(static_cast<std::size_t>(nt));
@@ -59,24 +56,7 @@ std::vector<ProxySymmetry> proxy_symmetry_group(const ContactProxy& proxy,
                                     std::to_string(t) + " is no proxy triangle");
       g.triangle_image[static_cast<std::size_t>(t)] = image->second;
     }
-    generators.push_back(std::move(g));
-  }
-  ProxySymmetry identity;
-  identity.vertex_image.resize(static_cast<std::size_t>(proxy.num_vertices()));
-  identity.triangle_image.resize(static_cast<std::size_t>(nt));
-  for (std::size_t v = 0; v < identity.vertex_image.size(); ++v)
-    identity.vertex_image[v] = static_cast<int>(v);
-  for (std::size_t t = 0; t < identity.triangle_image.size(); ++t)
-    identity.triangle_image[t] = static_cast<int>(t);
-  std::vector<ProxySymmetry> group{identity};
-  // Closure: every product of an element with a generator, until none is new.
-  for (std::size_t k = 0; k < group.size(); ++k) {
-    for (const ProxySymmetry& g : generators) {
-      ProxySymmetry p = compose(g, group[k]);
-      if (std::none_of(group.begin(), group.end(),
-                       [&](const ProxySymmetry& e) { return same(e, p); }))
-        group.push_back(std::move(p));
-    }
+    group.push_back(std::move(g));
   }
   return group;
 }

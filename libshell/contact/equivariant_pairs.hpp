@@ -31,7 +31,7 @@ struct ProxySymmetry {
 /// the proxy's reference vertices, as maps of its vertices and triangles, the identity first.
 /// Vertices are matched within `tolerance` (m). Throws std::invalid_argument naming the first
 /// proxy vertex without an image or triangle whose image is no proxy triangle, for a sign
-/// other than +1 or -1, or a tolerance that is not > 0.
+/// other than +1 or -1, a tolerance that is not > 0, or more than 16 generators.
 std::vector<ProxySymmetry> proxy_symmetry_group(const ContactProxy& proxy,
                                                 const std::vector<Eigen::Vector3d>& signs,
                                                 double tolerance);

@@ -267,7 +267,8 @@ ContactBranchTrace trace_contact_branch(
     auto t0 = Clock::now();
     ContactCandidates pairs;
     if (relaxed_start_pairs) {
-      pairs = *std::exchange(relaxed_start_pairs, std::nullopt);  // closed where it must be
+      // relax_segment_start's union, closed under the subspace's symmetries if there is one.
+      pairs = *std::exchange(relaxed_start_pairs, std::nullopt);
     } else {
       pairs = near_contact_pairs(proxy, start_x, options.contact_distance + margin,
                                  options.exclusion_radius, options.selection);

@@ -15,8 +15,8 @@ LowestSkewedState::LowestSkewedState(double symmetric_energy, double relative_ma
 }
 
 bool LowestSkewedState::offer(double energy, const Eigen::Ref<const Eigen::VectorXd>& x) {
-  if (!(energy < threshold_)) return false;  // also rejects NaN
-  if (found() && !(energy < energy_)) return false;
+  // energy_ starts at the symmetric energy, at or above the threshold; NaN fails both.
+  if (!(energy < threshold_ && energy < energy_)) return false;
   energy_ = energy;
   state_ = x;
   return true;

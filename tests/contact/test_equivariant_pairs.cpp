@@ -78,6 +78,8 @@ TEST(ProxySymmetryGroup, TheDiscsMirrorsGenerateFourMapsOfVerticesAndTriangles) 
   EXPECT_THROW(proxy_symmetry_group(d.proxy, {Eigen::Vector3d(1.0, 0.5, 1.0)}, 1e-9),
                std::invalid_argument);
   EXPECT_THROW(proxy_symmetry_group(d.proxy, {kMirrorY}, 0.0), std::invalid_argument);
+  EXPECT_THROW(proxy_symmetry_group(d.proxy, std::vector<Eigen::Vector3d>(17, kMirrorY), 1e-9),
+               std::invalid_argument);
 }
 
 double pair_distance(const ContactProxy& proxy, const Eigen::MatrixX3d& y, int v, int t) {

@@ -224,7 +224,9 @@ TEST(ContactBranch, InASubspaceAStartThatCannotConvergeIsRelaxedAndKeepsTheSymme
   Eigen::VectorXd g;
   energy.evaluate(first.sample.x, phi0, &g, nullptr);
   for (const Eigen::Index i : d.pinned) g[i] = 0.0;
-  EXPECT_LE(g.lpNorm<Eigen::Infinity>(), 10.0 * o.arclength.gradient_tolerance);
+  // An equivariant gradient's entries are its reduced entries over the square root of the
+  // orbit size, so the corrector's reduced tolerance bounds it (measured: 0.01 of it).
+  EXPECT_LE(g.lpNorm<Eigen::Infinity>(), o.arclength.gradient_tolerance);
 }
 
 // ContactBranchOptions::stability_index_for_segment: the samples carry the caller's count, and
