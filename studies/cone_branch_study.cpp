@@ -39,7 +39,7 @@ namespace growshell {
 namespace {
 
 /// The columns of the cone's branch.csv.
-const std::vector<std::string> kColumns = {
+const std::vector<std::string> kConeStudyColumns = {
     "phi_e",     "E_stretch",  "E_bend",      "Eb_hat",
     "area",      "min_gap",    "n_negative",  "corrector_iterations",
     "arclength", "folds",      "core_radius", "s4_defect",
@@ -248,7 +248,8 @@ void ConeBranchRun::open_record() {
   for (const char* stale : {"results.json", "cost.json", "eb_hat.png"})
     std::filesystem::remove(out_dir_ + "/" + stale);
   record_ = std::make_unique<BranchRecord>(
-      out_dir_, kColumns, fresh ? BranchRecord::Start::Fresh : BranchRecord::Start::Continue);
+      out_dir_, kConeStudyColumns,
+      fresh ? BranchRecord::Start::Fresh : BranchRecord::Start::Continue);
   if (fresh) return;
   branch_ = "cone";
   samples_ = static_cast<int>(record_->rows());

@@ -47,15 +47,15 @@ namespace {
 namespace fs = std::filesystem;
 
 /// The columns of DIR/symmetric/branch.csv and DIR/skewed/branch.csv.
-const std::vector<std::string> kColumns = {"phi_e",         "E_stretch",
-                                           "E_bend",        "E_penalty",
-                                           "Eb_hat",        "area",
-                                           "min_distance",  "active_pairs",
-                                           "contact_force", "gamma",
-                                           "n_negative",    "dE_dphi",
-                                           "arclength",     "corrector_iterations",
-                                           "s4_defect",     "chord_up",
-                                           "chord_down"};
+const std::vector<std::string> kContactStudyColumns = {"phi_e",         "E_stretch",
+                                                       "E_bend",        "E_penalty",
+                                                       "Eb_hat",        "area",
+                                                       "min_distance",  "active_pairs",
+                                                       "contact_force", "gamma",
+                                                       "n_negative",    "dE_dphi",
+                                                       "arclength",     "corrector_iterations",
+                                                       "s4_defect",     "chord_up",
+                                                       "chord_down"};
 
 constexpr const char* kConeDir = "cone";
 
@@ -700,10 +700,10 @@ EconeBranchResult EconeContactRun::contact_branches() {
   if (recorded_ && recorded_->contact_branches && BranchRecord::exists(dir_ + "/symmetric") &&
       BranchRecord::exists(dir_ + "/skewed")) {
     const EconeStageRecord::ContactBranches& r = *recorded_->contact_branches;
-    symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns,
+    symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kContactStudyColumns,
                                                 BranchRecord::Start::Continue);
-    skewed_ =
-        std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Continue);
+    skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kContactStudyColumns,
+                                             BranchRecord::Start::Continue);
     results_.max_s4_defect_symmetric = r.max_s4_defect_symmetric;
     top_skewed_ = restored_top(r.top_skewed);
     stages_.contact_branches = r;
@@ -715,9 +715,10 @@ EconeBranchResult EconeContactRun::contact_branches() {
   // is stale.
   recorded_.reset();
   save_stages();
-  symmetric_ =
-      std::make_unique<BranchRecord>(dir_ + "/symmetric", kColumns, BranchRecord::Start::Fresh);
-  skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kColumns, BranchRecord::Start::Fresh);
+  symmetric_ = std::make_unique<BranchRecord>(dir_ + "/symmetric", kContactStudyColumns,
+                                              BranchRecord::Start::Fresh);
+  skewed_ = std::make_unique<BranchRecord>(dir_ + "/skewed", kContactStudyColumns,
+                                           BranchRecord::Start::Fresh);
   say("# stage 2-4: the symmetric branch with contact from phi_e = " + fixed(start_.parameter, 6) +
       ", the skewed cone, the crossing");
   char header[256];
@@ -781,8 +782,8 @@ void EconeContactRun::trace_turned() {
   EconeStageRecord::Turned traced;
   if (from_record) {
     traced = *recorded_->turned;
-    turned_ =
-        std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Continue);
+    turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kContactStudyColumns,
+                                             BranchRecord::Start::Continue);
     top_turned_ = restored_top(traced.top);
     say("# stage 5: taken from stages.json (" + std::to_string(turned_->rows()) +
         " samples of the turned cone recorded)");
@@ -813,7 +814,8 @@ void EconeContactRun::trace_turned() {
 
 /// Stage 5's two traces from the turned state at phi0, into DIR/turned (a fresh record).
 EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
-  turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kColumns, BranchRecord::Start::Fresh);
+  turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kContactStudyColumns,
+                                           BranchRecord::Start::Fresh);
   say("# stage 5: the cone turned by " + fixed(turned_turn_deg_, 3) +
       " deg against the mesh and relaxed at phi_e = " + fixed(phi0, 6) +
       ", traced down and up");
@@ -1093,10 +1095,12 @@ void EconeContactRun::wind_up() {
       say("# stage 8: the recorded winding started from another state; it is traced afresh");
   }
   if (resumed) {
-    wound_ = std::make_unique<BranchRecord>(wound_dir, kColumns, BranchRecord::Start::Continue);
+    wound_ = std::make_unique<BranchRecord>(wound_dir, kContactStudyColumns,
+                                            BranchRecord::Start::Continue);
   } else {
     fs::remove_all(wound_dir);  // stale once the branches are traced again
-    wound_ = std::make_unique<BranchRecord>(wound_dir, kColumns, BranchRecord::Start::Fresh);
+    wound_ =
+        std::make_unique<BranchRecord>(wound_dir, kContactStudyColumns, BranchRecord::Start::Fresh);
     BranchSample s;
     s.x = start.x;
     s.parameter = start.phi;

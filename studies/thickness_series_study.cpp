@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "studies/atomic_file.hpp"
+#include "studies/json_number.hpp"
 #include "studies/parameter_sweep.hpp"
 
 namespace growshell {
@@ -14,17 +15,13 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number_or_null(const std::optional<double>& v) {
-  return v && std::isfinite(*v) ? Json(*v) : Json(nullptr);
-}
-
 Json fit_json(const std::optional<PowerLawFit>& fit) {
   if (!fit) return nullptr;
   return {{"limit", fit->limit},
-          {"amplitude", number_or_null(fit->amplitude)},
-          {"exponent", number_or_null(fit->exponent)},
+          {"amplitude", json_number_or_null(fit->amplitude)},
+          {"exponent", json_number_or_null(fit->exponent)},
           {"points", fit->points},
-          {"max_relative_misfit", number_or_null(fit->max_relative_misfit)}};
+          {"max_relative_misfit", json_number_or_null(fit->max_relative_misfit)}};
 }
 
 std::optional<double> number_at(const Json& results, const char* key) {
@@ -102,9 +99,9 @@ std::string thickness_series_results_json(const ThicknessSeriesResults& r) {
                       {"status", p.status},
                       {"end", p.end},
                       {"unknowns", p.unknowns ? Json(*p.unknowns) : Json(nullptr)},
-                      {"phi_branch", number_or_null(p.phi_branch)},
-                      {"phi_max", number_or_null(p.phi_max)},
-                      {"eb_hat_max", number_or_null(p.eb_hat_max)},
+                      {"phi_branch", json_number_or_null(p.phi_branch)},
+                      {"phi_max", json_number_or_null(p.phi_max)},
+                      {"eb_hat_max", json_number_or_null(p.eb_hat_max)},
                       {"branch_csv", p.directory + "/branch.csv"},
                       {"results", p.directory + "/results.json"}});
   j["points"] = points;
@@ -114,7 +111,7 @@ std::string thickness_series_results_json(const ThicknessSeriesResults& r) {
                       : Json(nullptr);
   j["completed"] = r.completed;
   j["end"] = r.end;
-  j["wall_seconds"] = number_or_null(r.wall_seconds);
+  j["wall_seconds"] = json_number_or_null(r.wall_seconds);
   return j.dump(2) + "\n";
 }
 

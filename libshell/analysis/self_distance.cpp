@@ -16,8 +16,8 @@ namespace growshell {
 namespace {
 
 /// Grid cell coordinates are packed into 21 bits each of one 64-bit key.
-constexpr int kKeyBits = 21;
-constexpr std::int64_t kKeyRange = std::int64_t{1} << kKeyBits;
+constexpr int kSampleCellKeyBits = 21;
+constexpr std::int64_t kKeyRange = std::int64_t{1} << kSampleCellKeyBits;
 /// Smallest cell size relative to the bounding-box diagonal: keeps every cell coordinate
 /// below kKeyRange (1e6 < 2^21).
 constexpr double kMinRelativeCell = 1e-6;
@@ -107,7 +107,8 @@ Best grid_pass(const Samples& s, const Eigen::Vector3d& origin, double c, double
     std::uint64_t key = 0;
     for (int d = 0; d < 3; ++d) {
       const auto cell = static_cast<std::int64_t>(std::floor((s.current[k](d) - origin(d)) / c));
-      key = (key << kKeyBits) | static_cast<std::uint64_t>(std::clamp<std::int64_t>(cell, 0, kKeyRange - 1));
+      key = (key << kSampleCellKeyBits) |
+            static_cast<std::uint64_t>(std::clamp<std::int64_t>(cell, 0, kKeyRange - 1));
     }
     keyed[k] = {key, static_cast<Eigen::Index>(k)};
   }
@@ -139,8 +140,10 @@ Best grid_pass(const Samples& s, const Eigen::Vector3d& origin, double c, double
     const std::size_t begin = cell_begin[cell], end = cell_begin[cell + 1];
     for (std::size_t p = begin; p < end; ++p)
       for (std::size_t q = p + 1; q < end; ++q) consider(keyed[p].second, keyed[q].second);
-    const std::int64_t ix = static_cast<std::int64_t>((cell_key[cell] >> (2 * kKeyBits)) & mask);
-    const std::int64_t iy = static_cast<std::int64_t>((cell_key[cell] >> kKeyBits) & mask);
+    const std::int64_t ix =
+        static_cast<std::int64_t>((cell_key[cell] >> (2 * kSampleCellKeyBits)) & mask);
+    const std::int64_t iy =
+        static_cast<std::int64_t>((cell_key[cell] >> kSampleCellKeyBits) & mask);
     const std::int64_t iz = static_cast<std::int64_t>(cell_key[cell] & mask);
     // Half of the 26 neighbours (the lexicographically larger offsets): each unordered pair
     // of cells is visited once.
@@ -149,8 +152,8 @@ Best grid_pass(const Samples& s, const Eigen::Vector3d& origin, double c, double
         for (int dz = (dx == 0 && dy == 0 ? 1 : -1); dz <= 1; ++dz) {
           const std::int64_t jx = ix + dx, jy = iy + dy, jz = iz + dz;
           if (jx >= kKeyRange || jy < 0 || jy >= kKeyRange || jz < 0 || jz >= kKeyRange) continue;
-          const std::uint64_t key = (static_cast<std::uint64_t>(jx) << (2 * kKeyBits)) |
-                                    (static_cast<std::uint64_t>(jy) << kKeyBits) |
+          const std::uint64_t key = (static_cast<std::uint64_t>(jx) << (2 * kSampleCellKeyBits)) |
+                                    (static_cast<std::uint64_t>(jy) << kSampleCellKeyBits) |
                                     static_cast<std::uint64_t>(jz);
           const auto it = std::lower_bound(cell_key.begin(), cell_key.end(), key);
           if (it == cell_key.end() || *it != key) continue;

@@ -21,11 +21,11 @@ namespace growshell {
 namespace {
 
 /// Grid cell coordinates are packed into 21 bits each of one 64-bit key.
-constexpr int kKeyBits = 21;
-constexpr std::int64_t kKeyRange = std::int64_t{1} << kKeyBits;
+constexpr int kCellKeyBits = 21;
+constexpr std::int64_t kCellKeyRange = std::int64_t{1} << kCellKeyBits;
 /// Smallest cell size relative to the bounding-box diagonal: keeps every cell coordinate
-/// below kKeyRange (1e6 < 2^21).
-constexpr double kMinRelativeCell = 1e-6;
+/// below kCellKeyRange (1e6 < 2^21).
+constexpr double kMinRelativeCellSize = 1e-6;
 /// Cell entries allowed per triangle before the cell size is doubled: a few huge (stretched)
 /// triangles must not fill millions of cells.
 constexpr std::size_t kMaxCellsPerTriangle = 64;
@@ -262,17 +262,18 @@ SelfIntersection find_self_intersection_unchecked(const ShellModel& model, const
   }
   mean_size /= static_cast<double>(kept.size());
   const double diagonal = (hi - lo).norm();
-  double c = diagonal > 0.0 ? std::max(mean_size, kMinRelativeCell * diagonal) : 1.0;
+  double c = diagonal > 0.0 ? std::max(mean_size, kMinRelativeCellSize * diagonal) : 1.0;
   const auto cell_of = [&](const Eigen::Vector3d& p) {
     std::array<std::int64_t, 3> cell{};
     for (int d = 0; d < 3; ++d)
-      cell[static_cast<std::size_t>(d)] =
-          std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p(d) - lo(d)) / c)), 0, kKeyRange - 1);
+      cell[static_cast<std::size_t>(d)] = std::clamp<std::int64_t>(
+          static_cast<std::int64_t>(std::floor((p(d) - lo(d)) / c)), 0, kCellKeyRange - 1);
     return cell;
   };
   const auto key_of = [](const std::array<std::int64_t, 3>& cell) {
-    return (static_cast<std::uint64_t>(cell[0]) << (2 * kKeyBits)) |
-           (static_cast<std::uint64_t>(cell[1]) << kKeyBits) | static_cast<std::uint64_t>(cell[2]);
+    return (static_cast<std::uint64_t>(cell[0]) << (2 * kCellKeyBits)) |
+           (static_cast<std::uint64_t>(cell[1]) << kCellKeyBits) |
+           static_cast<std::uint64_t>(cell[2]);
   };
   const auto cells_spanned = [&](std::size_t t) {
     const auto a = cell_of(box_lo[t]), b = cell_of(box_hi[t]);
