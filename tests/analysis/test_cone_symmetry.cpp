@@ -16,8 +16,6 @@
 namespace growshell {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 /// A point set with the quarter-turn symmetry: the centre and 8 rings of 24 points (24 is a
 /// multiple of 4), the rings twisted against each other so that no other structure helps.
 Eigen::MatrixX3d quarter_turn_points() {
@@ -25,7 +23,7 @@ Eigen::MatrixX3d quarter_turn_points() {
   X.row(0).setZero();
   for (int j = 1; j <= 8; ++j)
     for (int k = 0; k < 24; ++k) {
-      const double r = j / 8.0, t = 2 * kPi * k / 24 + 0.13 * j;
+      const double r = j / 8.0, t = 2 * std::numbers::pi * k / 24 + 0.13 * j;
       X.row(1 + (j - 1) * 24 + k) << r * std::cos(t), r * std::sin(t), 0.0;
     }
   return X;
@@ -75,7 +73,7 @@ TEST(ConeSymmetry, ExactD2dSurfaceHasNoDefectAndRecoversAxisAndApex) {
     EXPECT_GT(d.iterations, 0);
     const FoldDirections f = fold_directions(y, d.axis, y(Eigen::Vector3d::Zero()), 1.0);
     EXPECT_NEAR(f.up_angle, 0.0, 1e-9);
-    EXPECT_NEAR(f.down_angle, 0.5 * kPi, 1e-9);
+    EXPECT_NEAR(f.down_angle, 0.5 * std::numbers::pi, 1e-9);
     EXPECT_NEAR(f.amplitude, 0.4, 1e-12);
     const FoldChords c = fold_pair_chords(y, f, y(Eigen::Vector3d::Zero()), 1.0);
     EXPECT_NEAR(c.chord_up, exact_chord(0.4), 1e-12);
@@ -215,7 +213,7 @@ TEST(ConeSymmetry, RejectsBadInputs) {
 }
 
 /// Control points at the D2d cone of amplitude a (plus eps r) over the model's reference.
-Eigen::VectorXd cone_state(const ShellModel& model, double a, double eps) {
+Eigen::VectorXd d2d_cone_state(const ShellModel& model, double a, double eps) {
   Eigen::VectorXd x = model.reference_positions();
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
     const double r = std::hypot(x(3 * v), x(3 * v + 1)), t = std::atan2(x(3 * v + 1), x(3 * v));
@@ -228,7 +226,7 @@ TEST(ConeSymmetry, HexagonalDiscRefusesTheVertexMapAndInterpolates) {
   DiscMeshOptions o;
   o.rings = 10;
   ShellModel model(make_disc_mesh(o), ShellModelSettings{});
-  const Eigen::VectorXd x = cone_state(model, 0.4, 0.0);
+  const Eigen::VectorXd x = d2d_cone_state(model, 0.4, 0.0);
   try {
     s4_symmetry_defect(model, x);
     ADD_FAILURE() << "the hexagonal disc has no quarter-turn vertex symmetry";
@@ -243,12 +241,12 @@ TEST(ConeSymmetry, HexagonalDiscRefusesTheVertexMapAndInterpolates) {
   EXPECT_FALSE(s.vertex_map);
   EXPECT_LT(s.s4.defect, 3e-3);
   EXPECT_LT(std::abs(s.s4.axis.z() - 1.0), 1e-3);
-  EXPECT_NEAR(std::remainder(s.folds.up_angle, kPi), 0.0, 1e-2);
+  EXPECT_NEAR(std::remainder(s.folds.up_angle, std::numbers::pi), 0.0, 1e-2);
   EXPECT_NEAR(s.chords.chord_up, s.chords.chord_down, 5e-3);  // measured 1.6e-3
   EXPECT_NEAR(s.chords.chord_up, exact_chord(0.4), 5e-3);
   // B2 shows up as a defect well above the symmetric cone's (measured 2.5e-2) and splits the
   // chords (by 0.06).
-  const ConeSymmetry b = measure_cone_symmetry(model, cone_state(model, 0.4, 0.05));
+  const ConeSymmetry b = measure_cone_symmetry(model, d2d_cone_state(model, 0.4, 0.05));
   EXPECT_GT(b.s4.defect, 3.0 * s.s4.defect);
   EXPECT_LT(b.chords.chord_up, s.chords.chord_up - 0.01);
   EXPECT_GT(b.chords.chord_down, s.chords.chord_down + 0.01);
@@ -262,7 +260,7 @@ TEST(ConeSymmetry, UnstructuredDiscTakesTheApexAtTheCentre) {
   o.size_slope = 0.15;
   o.size_floor = 0.02;
   ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
-  const ConeSymmetry s = measure_cone_symmetry(model, cone_state(model, 0.4, 0.0));
+  const ConeSymmetry s = measure_cone_symmetry(model, d2d_cone_state(model, 0.4, 0.0));
   EXPECT_FALSE(s.vertex_map);
   // Interpolation and the irregular limit surface: measured 2.0e-3 for the chords.
   EXPECT_NEAR(s.chords.chord_up, exact_chord(0.4), 1e-2);
@@ -279,7 +277,7 @@ TEST(ConeSymmetry, MeterOnAnUnstructuredDiscIsTheEvaluatorsDefect) {
   ShellModel model(make_gmsh_disc_mesh(o), ShellModelSettings{});
   const ConeSymmetryMeter meter(model);
   for (const double eps : {0.0, 0.05}) {
-    const Eigen::VectorXd x = cone_state(model, 0.4, eps);
+    const Eigen::VectorXd x = d2d_cone_state(model, 0.4, eps);
     // The same points through the evaluator: the sheet vertices' reference limit positions and
     // their quarter turns (the growth centre is the origin here).
     const Eigen::MatrixX3d current = model.limit_positions(x);
@@ -303,8 +301,8 @@ TEST(ConeSymmetry, MeterOnAnUnstructuredDiscIsTheEvaluatorsDefect) {
     EXPECT_EQ(by_meter.chords.chord_up, whole.chords.chord_up);
     EXPECT_EQ(by_meter.chords.chord_down, whole.chords.chord_down);
   }
-  EXPECT_GT(meter.s4(cone_state(model, 0.4, 0.05)).defect,
-            3.0 * meter.s4(cone_state(model, 0.4, 0.0)).defect);
+  EXPECT_GT(meter.s4(d2d_cone_state(model, 0.4, 0.05)).defect,
+            3.0 * meter.s4(d2d_cone_state(model, 0.4, 0.0)).defect);
   EXPECT_THROW(meter.s4(Eigen::VectorXd::Zero(4)), std::invalid_argument);
 }
 
@@ -314,7 +312,7 @@ TEST(ConeSymmetry, RingWithQuarterTurnUsesTheVertexMap) {
   o.radial_layers = 8;  // 36 vertices per ring
   ASSERT_EQ(annulus_vertices_per_ring(o) % 4, 0) << "this ring needs a multiple of 4 per ring";
   ShellModel model(make_annulus_mesh(o), ShellModelSettings{});
-  const Eigen::VectorXd x = cone_state(model, 0.4, 0.0);
+  const Eigen::VectorXd x = d2d_cone_state(model, 0.4, 0.0);
   // The limit surface of an S4-symmetric control net on an S4-symmetric mesh is exactly
   // symmetric: no interpolation, rounding only.
   const S4Defect d = s4_symmetry_defect(model, x);
@@ -325,7 +323,7 @@ TEST(ConeSymmetry, RingWithQuarterTurnUsesTheVertexMap) {
   EXPECT_TRUE(s.vertex_map);
   EXPECT_EQ(s.s4.defect, d.defect);
   EXPECT_NEAR(s.chords.chord_up, s.chords.chord_down, 1e-9);
-  const S4Defect b = s4_symmetry_defect(model, cone_state(model, 0.4, 1e-3));
+  const S4Defect b = s4_symmetry_defect(model, d2d_cone_state(model, 0.4, 1e-3));
   EXPECT_GT(b.defect, 1e-5);
 }
 

@@ -22,8 +22,6 @@
 namespace growshell {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 using test_support::flatten;
 using test_support::identity_proxy;
 
@@ -134,7 +132,7 @@ TEST(ContactZones, ConePlaneAngleUsesTheStudiesZones) {
   const Eigen::VectorXd x = flatten(z.points);
   ContactGapConstraints gaps(proxy, z.pairs, 0.05, x.size());
   EXPECT_EQ(cone_contact_plane_angle(gaps, x, z.forces, 5.0),
-            contact_plane_angle(contact_zones(gaps, x, z.forces, 0.5, 1e-3, kPi / 6)));
+            contact_plane_angle(contact_zones(gaps, x, z.forces, 0.5, 1e-3, std::numbers::pi / 6)));
   const Eigen::Vector3d normal_b = (0.7 * z.n1 + 0.25 * z.n2).normalized();
   EXPECT_NEAR(cone_contact_plane_angle(gaps, x, z.forces, 5.0), std::acos(normal_b.z()), 1e-12);
   EXPECT_NEAR(cone_contact_plane_angle(gaps, x, z.forces, 3.0), 0.0, 1e-12);
@@ -193,13 +191,13 @@ TEST(ContactZones, PlaneAngleOfHandMadeZones) {
   a.normal = Eigen::Vector3d(0, 0, 1);
   EXPECT_TRUE(std::isnan(contact_plane_angle({})));
   EXPECT_TRUE(std::isnan(contact_plane_angle({a})));
-  for (const double gamma : {0.0, 0.3, kPi / 2, 2.0, kPi}) {
+  for (const double gamma : {0.0, 0.3, std::numbers::pi / 2, 2.0, std::numbers::pi}) {
     b.normal = Eigen::Vector3d(std::sin(gamma), 0.0, std::cos(gamma));
     // Planes, not normals: gamma and pi - gamma are the same pair of planes.
-    const double expected = gamma <= kPi / 2 ? gamma : kPi - gamma;
+    const double expected = gamma <= std::numbers::pi / 2 ? gamma : std::numbers::pi - gamma;
     // acos loses accuracy only near 0 (dot = 1): 1e-7 there, 1e-12 elsewhere.
     EXPECT_NEAR(contact_plane_angle({a, b}), expected,
-                expected < 0.1 || expected > kPi - 0.1 ? 1e-7 : 1e-12)
+                expected < 0.1 || expected > std::numbers::pi - 0.1 ? 1e-7 : 1e-12)
         << gamma;
   }
 }

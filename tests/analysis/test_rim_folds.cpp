@@ -13,7 +13,8 @@ namespace {
 /// Control points of the cone X(r, t) = r (cos t cos b, sin t cos b, sin b), b = a cos(n t),
 /// rotated by `rotation`: a cone whose generator directions oscillate n times about a great
 /// circle with elevation amplitude a (radians).
-Eigen::VectorXd cone_state(const ShellModel& model, int n, double a, const Eigen::Matrix3d& rotation) {
+Eigen::VectorXd oscillating_cone_state(const ShellModel& model, int n, double a,
+                                       const Eigen::Matrix3d& rotation) {
   Eigen::VectorXd x = model.reference_positions();
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
     const double r = std::hypot(x(3 * v), x(3 * v + 1)), t = std::atan2(x(3 * v + 1), x(3 * v));
@@ -34,7 +35,8 @@ TEST(RimFolds, CountsTheFoldsOfConesInAnyOrientation) {
   for (int n : {2, 3, 4}) {
     for (double a : {0.05, 0.4, 1.0}) {
       for (const Eigen::Matrix3d& R : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), tilt}) {
-        const RimFoldAnalysis rim = analyze_rim_folds(model, cone_state(model, n, a, R));
+        const RimFoldAnalysis rim =
+            analyze_rim_folds(model, oscillating_cone_state(model, n, a, R));
         EXPECT_EQ(rim.folds, n) << "n = " << n << ", amplitude " << a;
         // sin(a cos(n t)) has the n-th Fourier amplitude 2 J_1(a) (Jacobi-Anger); the curve's
         // m = n power also holds nothing else for these n. Sampling on the rim vertices is

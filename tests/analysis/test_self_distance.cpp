@@ -3,34 +3,36 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <set>
-#include <array>
 #include <stdexcept>
 #include <vector>
 
 #include "libshell/analysis/self_distance.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
+#include "tests/support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test_support::map_reference;
 
 /// Brute-force O(N^2) reference: the same samples (element order, (i/n, j/n) with i outer,
 /// shared corners and edges from their first element), the same squared distances and the
 /// same tie rule as smallest_self_distance.
-struct BruteForce {
+struct BruteForceSelfDistance {
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Index element_a = -1, element_b = -1, samples = 0;
 };
 
-BruteForce brute_force_self_distance(const ShellModel& model, const Eigen::VectorXd& x, double exclusion_radius,
-                                     int n) {
+BruteForceSelfDistance brute_force_self_distance(const ShellModel& model, const Eigen::VectorXd& x,
+                                                 double exclusion_radius, int n) {
   const Eigen::Index nv = x.size() / 3;
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   const Eigen::MatrixX3d cur = Eigen::Map<const RowMajorX3>(x.data(), nv, 3);
@@ -60,7 +62,7 @@ BruteForce brute_force_self_distance(const ShellModel& model, const Eigen::Vecto
         E.push_back(e);
       }
   }
-  BruteForce best;
+  BruteForceSelfDistance best;
   best.samples = static_cast<Eigen::Index>(P.size());
   double best_squared = std::numeric_limits<double>::infinity();
   const double r2 = exclusion_radius * exclusion_radius;
@@ -75,14 +77,6 @@ BruteForce brute_force_self_distance(const ShellModel& model, const Eigen::Vecto
     }
   best.distance = std::sqrt(best_squared);
   return best;
-}
-
-/// Applies f to every control point of the reference (vertex-major flat vector).
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
 }
 
 TEST(SelfDistance, FlatDiscFindsPairsJustBeyondTheExclusionRadius) {
@@ -117,11 +111,12 @@ TEST(SelfDistance, FlatDiscFindsPairsJustBeyondTheExclusionRadius) {
 /// radius rho, top leg z = 2 rho running back. Applied to all control points (ghosts too).
 struct UFold {
   double rho, leg;
-  double length() const { return 2.0 * leg + kPi * rho; }
+  double length() const { return 2.0 * leg + std::numbers::pi * rho; }
   Eigen::Vector3d operator()(const Eigen::Vector3d& X) const {
     const double s = X.x();
     if (s <= leg) return {s, X.y(), 0.0};
-    if (s >= leg + kPi * rho) return {leg - (s - leg - kPi * rho), X.y(), 2.0 * rho};
+    if (s >= leg + std::numbers::pi * rho)
+      return {leg - (s - leg - std::numbers::pi * rho), X.y(), 2.0 * rho};
     const double t = (s - leg) / rho;
     return {leg + rho * std::sin(t), X.y(), rho * (1.0 - std::cos(t))};
   }
@@ -144,12 +139,13 @@ TEST(SelfDistance, StripFoldedIntoAU) {
   // (Loop reproduces planes); facing samples exist since L / dx is an integer. The valid
   // facing pairs have x <= l - (r_ex - pi rho) / 2, far (> 2 cells) from the arc.
   {
-    const double r_ex = 2.0 * kPi * rho;
+    const double r_ex = 2.0 * std::numbers::pi * rho;
     const SelfDistance d = smallest_self_distance(model, x, {r_ex, n});
     EXPECT_NEAR(d.distance, 2.0 * rho, 1e-12 * rho);
     EXPECT_NEAR(std::min(d.point_a.z(), d.point_b.z()), 0.0, 1e-12 * rho);
     EXPECT_NEAR(std::max(d.point_a.z(), d.point_b.z()), 2.0 * rho, 1e-12 * rho);
-    EXPECT_LE(std::max(d.point_a.x(), d.point_b.x()), fold.leg - 0.5 * (r_ex - kPi * rho) + 1e-12);
+    EXPECT_LE(std::max(d.point_a.x(), d.point_b.x()),
+              fold.leg - 0.5 * (r_ex - std::numbers::pi * rho) + 1e-12);
     EXPECT_GE((d.reference_a - d.reference_b).norm(), r_ex);
     std::cout << "U fold r_ex = 2 pi rho: distance / (2 rho) - 1 = " << d.distance / (2 * rho) - 1
               << ", pairs " << d.pairs_checked << "\n";
@@ -164,7 +160,7 @@ TEST(SelfDistance, StripFoldedIntoAU) {
   // = 1e-5 rho between them): the chord is 2 (rho - delta) sin(s / (2 rho)). Tolerance
   // 2e-5 rho covers the O(dtheta^4) terms; the uncorrected chord is 7e-4 rho .. 1e-3 rho off.
   for (double fraction : {0.5, 0.8}) {
-    const double r_ex = fraction * kPi * rho;
+    const double r_ex = fraction * std::numbers::pi * rho;
     const SelfDistance d = smallest_self_distance(model, x, {r_ex, n});
     const double s = std::ceil(r_ex * n / dx - 1e-9) * dx / n;
     const double delta = rho * (1.0 - std::cos(dx / rho)) / 3.0;
@@ -198,10 +194,11 @@ TEST(SelfDistance, RandomFoldedDiscsMatchBruteForce) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         wave_k(i, j) = 1.0 + 3.0 * U(rng);
-        wave_phase(i, j) = 2.0 * kPi * U(rng);
+        wave_phase(i, j) = 2.0 * std::numbers::pi * U(rng);
       }
     const Eigen::Matrix3d rotation =
-        Eigen::AngleAxisd(2.0 * kPi * U(rng), Eigen::Vector3d(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized())
+        Eigen::AngleAxisd(2.0 * std::numbers::pi * U(rng),
+                          Eigen::Vector3d(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized())
             .toRotationMatrix();
     const Eigen::VectorXd x = map_reference(model, [&](const Eigen::Vector3d& X) {
       const double t = X.x() / roll;
@@ -214,7 +211,7 @@ TEST(SelfDistance, RandomFoldedDiscsMatchBruteForce) {
     const double r_ex = 0.05 + 0.35 * U(rng);
     const int n = 1 + static_cast<int>(seed % 3);
     const SelfDistance d = smallest_self_distance(model, x, {r_ex, n});
-    const BruteForce bf = brute_force_self_distance(model, x, r_ex, n);
+    const BruteForceSelfDistance bf = brute_force_self_distance(model, x, r_ex, n);
     // The same samples and the same pair; the samples come from the cached lattice map here and
     // from evaluate_limit_surface in the brute force, equal up to the order of summation.
     EXPECT_NEAR(d.distance, bf.distance, 1e-14) << "seed " << seed;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -18,19 +19,12 @@
 #include "libshell/analysis/self_intersection.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
+#include "tests/support/sheet_states.hpp"
 
 namespace growshell {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-/// Applies f to every control point of the reference (vertex-major flat vector).
-template <class F>
-Eigen::VectorXd map_reference(const ShellModel& model, F f) {
-  Eigen::VectorXd x = model.reference_positions();
-  for (Eigen::Index v = 0; v < x.size() / 3; ++v) x.segment<3>(3 * v) = f(Eigen::Vector3d(x.segment<3>(3 * v)));
-  return x;
-}
+using test_support::map_reference;
 
 /// The strip x in [0, L] folded into a U: bottom leg z = 0 for x <= l, a half circle of
 /// radius rho, then the top leg leaving the arc's end (l, 2 rho) in the direction
@@ -40,13 +34,13 @@ Eigen::VectorXd map_reference(const ShellModel& model, F f) {
 /// one leg the limit surface is exactly that plane (Loop reproduces linear functions).
 struct TiltedU {
   double rho, leg, tilt = 0.0;
-  double length() const { return 2.0 * leg + kPi * rho; }
+  double length() const { return 2.0 * leg + std::numbers::pi * rho; }
   double crossing_x() const { return leg - 2.0 * rho / std::tan(tilt); }
   Eigen::Vector3d operator()(const Eigen::Vector3d& X) const {
     const double s = X.x();
     if (s <= leg) return {s, X.y(), 0.0};
-    if (s >= leg + kPi * rho) {
-      const double u = s - leg - kPi * rho;
+    if (s >= leg + std::numbers::pi * rho) {
+      const double u = s - leg - std::numbers::pi * rho;
       return {leg - u * std::cos(tilt), X.y(), 2.0 * rho - u * std::sin(tilt)};
     }
     const double t = (s - leg) / rho;
@@ -154,18 +148,19 @@ class TiltedStrip : public ::testing::Test {
 TEST_F(TiltedStrip, PlainUDoesNotIntersect) {
   const Eigen::VectorXd x = state(0.0);
   const double rho = fold.rho;
-  for (double r_ex : {0.5 * kPi * rho, 2.0 * kPi * rho}) {
+  for (double r_ex : {0.5 * std::numbers::pi * rho, 2.0 * std::numbers::pi * rho}) {
     const SelfIntersection s = find_self_intersection(*model, x, options(r_ex));
     EXPECT_FALSE(s.intersects) << "r_ex " << r_ex << ", point " << s.point.transpose();
   }
   // Beyond the arclength of the fold only the legs face each other, exactly 2 rho apart
   // (see test_self_distance.cpp: facing samples exist, the legs are exact planes there).
-  const double gap = signed_self_gap(*model, x, options(2.0 * kPi * rho));
+  const double gap = signed_self_gap(*model, x, options(2.0 * std::numbers::pi * rho));
   EXPECT_NEAR(gap, 2.0 * rho, 1e-12 * rho);
 }
 
 TEST_F(TiltedStrip, TopLegPushedThroughIntersectsOnTheCrossingLine) {
-  const double rho = fold.rho, dx = strip.length / strip.cells_x, r_ex = 2.0 * kPi * rho;
+  const double rho = fold.rho, dx = strip.length / strip.cells_x,
+               r_ex = 2.0 * std::numbers::pi * rho;
   // The top leg's free end sits at z_end = 2 rho - l sin a; it reaches the bottom leg's
   // plane at sin a = 2 rho / l. Below that factor the legs are apart, above it they cross.
   const double critical = 2.0 * rho / fold.leg;
@@ -206,7 +201,7 @@ TEST(SelfIntersection, TightFoldInsideTheExclusionRadiusNeverCounts) {
   // A tight fold (rho = 1 cm) whose top leg, tilted by 30 degrees, passes through the bottom
   // leg at u = 2 rho / sin a = 4 cm beyond the arc: the two sheets cross at reference
   // separation pi rho + u (1 + cos a) = 0.106 m.
-  TiltedU fold{0.01, 0.4, kPi / 6.0};
+  TiltedU fold{0.01, 0.4, std::numbers::pi / 6.0};
   StripMeshOptions strip;
   strip.length = fold.length();
   strip.width = 0.05;
@@ -214,7 +209,8 @@ TEST(SelfIntersection, TightFoldInsideTheExclusionRadiusNeverCounts) {
   strip.cells_y = 2;
   const ShellModel model(make_strip_mesh(strip), ShellModelSettings{});
   const Eigen::VectorXd x = map_reference(model, fold);
-  const double separation = kPi * fold.rho + 2.0 * fold.rho / std::sin(fold.tilt) * (1.0 + std::cos(fold.tilt));
+  const double separation = std::numbers::pi * fold.rho +
+                            2.0 * fold.rho / std::sin(fold.tilt) * (1.0 + std::cos(fold.tilt));
   EXPECT_NEAR(separation, 0.106, 1e-3);
 
   // Exclusion radius 0.05 m < separation: the crossing counts, on its line.
@@ -235,7 +231,7 @@ TEST(SelfIntersection, TightFoldInsideTheExclusionRadiusNeverCounts) {
 /// Independent O(T^2) reference: the same sub-triangles (evaluated per element, without
 /// sharing, in the documented order), the same admissibility, and a different narrow
 /// phase: Moeller-Trumbore segment-triangle tests of the six edges.
-struct BruteForce {
+struct BruteForceIntersection {
   bool intersects = false;
   Eigen::Index element_a = -1, element_b = -1, admissible_pairs = 0, triangles = 0;
 };
@@ -253,7 +249,8 @@ bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, c
   return u >= 0.0 && v >= 0.0 && u + v <= 1.0 && along >= 0.0 && along <= 1.0;
 }
 
-BruteForce brute_force(const ShellModel& model, const Eigen::VectorXd& x, const SelfIntersectionOptions& o) {
+BruteForceIntersection brute_force(const ShellModel& model, const Eigen::VectorXd& x,
+                                   const SelfIntersectionOptions& o) {
   const Eigen::Index nv = x.size() / 3;
   using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   const Eigen::MatrixX3d cur = Eigen::Map<const RowMajorX3>(x.data(), nv, 3);
@@ -280,7 +277,7 @@ BruteForce brute_force(const ShellModel& model, const Eigen::VectorXd& x, const 
         if (i + j < n - 1) add({{{i + 1, j}, {i + 1, j + 1}, {i, j + 1}}});
       }
   }
-  BruteForce result;
+  BruteForceIntersection result;
   result.triangles = static_cast<Eigen::Index>(P.size());
   const double r2 = o.exclusion_radius * o.exclusion_radius;
   std::vector<char> in_core(P.size(), 0);
@@ -326,10 +323,11 @@ TEST(SelfIntersection, RandomRolledDiscsMatchBruteForce) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         wave_k(i, j) = 1.0 + 3.0 * U(rng);
-        wave_phase(i, j) = 2.0 * kPi * U(rng);
+        wave_phase(i, j) = 2.0 * std::numbers::pi * U(rng);
       }
     const Eigen::Matrix3d rotation =
-        Eigen::AngleAxisd(2.0 * kPi * U(rng), Eigen::Vector3d(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized())
+        Eigen::AngleAxisd(2.0 * std::numbers::pi * U(rng),
+                          Eigen::Vector3d(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized())
             .toRotationMatrix();
     const Eigen::VectorXd x = map_reference(model, [&](const Eigen::Vector3d& X) {
       const double t = X.x() / roll;
@@ -342,7 +340,7 @@ TEST(SelfIntersection, RandomRolledDiscsMatchBruteForce) {
     SelfIntersectionOptions opts = options(0.05 + 0.25 * U(rng), 1 + static_cast<int>(seed % 3));
     if (seed % 2 == 0) opts.core_radius = 0.3;
     const SelfIntersection s = find_self_intersection(model, x, opts);
-    const BruteForce bf = brute_force(model, x, opts);
+    const BruteForceIntersection bf = brute_force(model, x, opts);
     EXPECT_EQ(s.intersects, bf.intersects) << "seed " << seed;
     // Same triangle order, so the same smallest intersecting pair.
     EXPECT_EQ(s.element_a, bf.element_a) << "seed " << seed;

@@ -41,7 +41,7 @@ TEST(StateEvaluator, ExactAtVerticesAndForAffineStates) {
 }
 
 /// A curved, sheared state: z = X^2 + Y^2 / 2 and an in-plane twist at the control points.
-Eigen::VectorXd curved_state(const ShellModel& model) {
+Eigen::VectorXd quadratic_curved_state(const ShellModel& model) {
   Eigen::VectorXd x = model.reference_positions();
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
     const double X = x(3 * v), Y = x(3 * v + 1);
@@ -77,7 +77,7 @@ double worst_limit_surface_error(const ShellModel& model, const Eigen::VectorXd&
 
 TEST(StateEvaluator, IsTheLimitSurfaceOnALatticeDisc) {
   const ShellModel model = disc_model(8);
-  EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
+  EXPECT_LT(worst_limit_surface_error(model, quadratic_curved_state(model)), 1e-11);
 }
 
 /// A coarse Gmsh disc (size slope 0.3, floor 0.05) with irregular vertices.
@@ -91,7 +91,7 @@ ShellModel irregular_gmsh_model() {
 TEST(StateEvaluator, IsTheLimitSurfaceOnAnUnstructuredDiscWithIrregularVertices) {
   const ShellModel model = irregular_gmsh_model();
   ASSERT_GT(model.patches().num_irregular(), 10);
-  EXPECT_LT(worst_limit_surface_error(model, curved_state(model)), 1e-11);
+  EXPECT_LT(worst_limit_surface_error(model, quadratic_curved_state(model)), 1e-11);
 }
 
 // MaterialPointSampling: the points located once, then one sparse product per state, give the
@@ -109,9 +109,9 @@ TEST(StateEvaluator, SamplingFixedMaterialPointsIsTheEvaluator) {
   }
   const MaterialPointSampling sampling(model, points);
   EXPECT_EQ(sampling.size(), n);
-  Eigen::VectorXd bent = curved_state(model);
+  Eigen::VectorXd bent = quadratic_curved_state(model);
   for (Eigen::Index i = 2; i < bent.size(); i += 3) bent(i) += 0.3 * std::sin(7.0 * bent(i - 2));
-  for (const Eigen::VectorXd& x : {curved_state(model), bent}) {
+  for (const Eigen::VectorXd& x : {quadratic_curved_state(model), bent}) {
     const StateEvaluator y = sheet_state_evaluator(model, x);
     const Eigen::MatrixX3d sampled = sampling.positions(x);
     double worst = 0.0;

@@ -38,7 +38,7 @@ Eigen::VectorXd affine_state(const ShellModel& model, const Eigen::Matrix3d& A,
 }
 
 /// A curved, sheared state given at the control points.
-Eigen::VectorXd curved_state(const ShellModel& model) {
+Eigen::VectorXd cubic_curved_state(const ShellModel& model) {
   return test_support::map_reference(model, [](const Eigen::Vector3d& X) {
     return Eigen::Vector3d(X.x() + 0.1 * X.y() * X.y(), X.y() - 0.2 * X.x() * X.y(),
                            X.x() * X.x() + 0.5 * X.y() * X.y() + 0.3 * X.x() * X.y() * X.y());
@@ -71,7 +71,7 @@ TEST(StateTransfer, TurningByASymmetryOfTheMeshPermutesTheTransferredPoints) {
   // of its nearest element, which between equally near ones need not be the quarter-turned
   // choice: those are left out.)
   const ShellModel rings = rings_model();
-  const Eigen::VectorXd x = curved_state(rings);
+  const Eigen::VectorXd x = cubic_curved_state(rings);
   const Eigen::VectorXd plain = transfer_state(rings, x, rings);
   const Eigen::VectorXd turned = transfer_state(rings, x, rings, std::numbers::pi / 2);
   const Eigen::Matrix3d Q =
@@ -101,7 +101,7 @@ TEST(StateTransfer, ACurvedStateComesBackToWithinTheSmoothingOfTheSubdivision) {
   double previous = 0.0;
   for (const double scale : {1.0, 0.5}) {
     const ShellModel rings = rings_model(scale);
-    const Eigen::VectorXd x = curved_state(rings);
+    const Eigen::VectorXd x = cubic_curved_state(rings);
     const Eigen::VectorXd back = transfer_state(rings, x, rings);
     double worst = 0.0;
     for (const int v : rings.sheet_vertices())

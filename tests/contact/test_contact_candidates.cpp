@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -24,8 +25,6 @@ namespace {
 
 using test_support::map_reference;
 
-constexpr double kPi = 3.14159265358979323846;
-
 /// The unit disc rolled onto a cylinder of radius 0.25..0.6 (it wraps up to 1.3 times, so far
 /// parts pass close to or through each other), with smooth random waves and a random rotation.
 Eigen::VectorXd random_folded_disc(const ShellModel& model, unsigned seed) {
@@ -36,10 +35,10 @@ Eigen::VectorXd random_folded_disc(const ShellModel& model, unsigned seed) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       wave_k(i, j) = 1.0 + 3.0 * U(rng);
-      wave_phase(i, j) = 2.0 * kPi * U(rng);
+      wave_phase(i, j) = 2.0 * std::numbers::pi * U(rng);
     }
   const Eigen::Matrix3d rotation =
-      Eigen::AngleAxisd(2.0 * kPi * U(rng),
+      Eigen::AngleAxisd(2.0 * std::numbers::pi * U(rng),
                         Eigen::Vector3d(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized())
           .toRotationMatrix();
   return map_reference(model, [&](const Eigen::Vector3d& X) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -21,6 +22,8 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "support/dense_symmetric.hpp"
 #include "support/sheet_states.hpp"
+#include "tests/support/expect_invalid_argument.hpp"
+#include "tests/support/folded_disc_scene.hpp"
 #include "tests/support/identity_proxy.hpp"
 
 namespace growshell {
@@ -29,37 +32,13 @@ namespace {
 using test_support::dense_symmetric;
 using test_support::folded_sheet;
 
-constexpr double kPi = 3.14159265358979323846;
-
+using test_support::expect_invalid_argument_containing;
 using test_support::flatten;
+using test_support::FoldedDiscScene;
 using test_support::identity_proxy;
 
-/// The folded-disc scene shared by the tests: a 5-ring unit disc (proxy spacing about 0.12 m)
-/// folded about its diameter X = 0 with a 0.08 m gap between the layers (fold radius 0.04 m),
-/// the half X > 0 lying over the half X < 0.
-struct FoldedScene {
-  static constexpr double kRho = 0.04;
-  static constexpr double kOffset = 0.1;
-  ShellModel model;
-  ContactProxy proxy;
-  Eigen::VectorXd x;
-  ContactCandidates pairs;
-
-  FoldedScene(double wobble, int segments_per_edge)
-      : model(make_disc_mesh([] {
-                DiscMeshOptions o;
-                o.rings = 5;
-                return o;
-              }()),
-              ShellModelSettings{}),
-        proxy(make_contact_proxy(model, segments_per_edge)),
-        x(folded_sheet(model, 0.0, kRho, wobble)) {
-    ContactCandidateOptions options;
-    options.query_distance = 0.12;
-    options.exclusion_radius = 0.2;
-    pairs = find_contact_candidates(proxy, proxy_positions(proxy, x), options);
-  }
-};
+/// The offset of the gap constraints on the folded disc (FoldedDiscScene).
+constexpr double kFoldedDiscOffset = 0.1;
 
 /// Pair indices whose region and mollifier branch are the same at x - step, x and x + step,
 /// so that central differences see one smooth function.
@@ -153,7 +132,7 @@ TEST(ContactGapConstraints, CrossingAndNearlyParallelEdgesWithTheMollifier) {
   // lines are 0.3 apart and the closest points are the midpoints. |e0 x e1|^2 = 16 sin^2 alpha
   // and the mollifier threshold is 1e-3 |e0|^2 |e1|^2 = 16e-3, so m = (2 - r) r with
   // r = sin^2(alpha) / 1e-3 (m = 1 for r >= 1).
-  for (const double alpha : {kPi / 2, 0.2, 0.01}) {
+  for (const double alpha : {std::numbers::pi / 2, 0.2, 0.01}) {
     Eigen::MatrixX3d points(4, 3);
     points << -1, 0, 0.3, 1, 0, 0.3, -std::cos(alpha), -std::sin(alpha), 0, std::cos(alpha),
         std::sin(alpha), 0;
@@ -189,9 +168,9 @@ TEST(ContactGapConstraints, StackedFlatLayersHaveTheirSeparationAsDistance) {
   // support of a proxy vertex lies in one leg. A vertex whose xy-projection falls inside a
   // triangle of the other layer is exactly 2 rho from it, and so are two edges whose
   // projections cross; no pair of the two layers is closer.
-  const FoldedScene scene(0.0, 2);
-  const double D = 2.0 * FoldedScene::kRho;
-  ContactGapConstraints c(scene.proxy, scene.pairs, FoldedScene::kOffset, scene.model.dimension());
+  const FoldedDiscScene scene(0.0, 2);
+  const double D = 2.0 * FoldedDiscScene::kRho;
+  ContactGapConstraints c(scene.proxy, scene.pairs, kFoldedDiscOffset, scene.model.dimension());
   Eigen::VectorXd values;
   c.evaluate(scene.x, values, nullptr);
   const Eigen::MatrixX3d y = proxy_positions(scene.proxy, scene.x);
@@ -218,7 +197,7 @@ TEST(ContactGapConstraints, StackedFlatLayersHaveTheirSeparationAsDistance) {
       flat = flat && layer(v(1)) == l0 && layer(v(3)) == l1;
     if (!flat) continue;
     ++flat_pairs;
-    EXPECT_GE(g.gap, D - FoldedScene::kOffset - 1e-14) << "pair " << k;
+    EXPECT_GE(g.gap, D - kFoldedDiscOffset - 1e-14) << "pair " << k;
     const auto xy = [&](int i) { return Eigen::Vector2d(y(v(i), 0), y(v(i), 1)); };
     bool overlapping = false;
     if (g.type == ContactPairType::VertexTriangle) {
@@ -239,7 +218,7 @@ TEST(ContactGapConstraints, StackedFlatLayersHaveTheirSeparationAsDistance) {
     }
     if (overlapping) {
       // z-coordinates of the upper layer carry one rounding of the map's weights (~1e-17 m).
-      EXPECT_NEAR(g.gap, D - FoldedScene::kOffset, 1e-14) << "pair " << k;
+      EXPECT_NEAR(g.gap, D - kFoldedDiscOffset, 1e-14) << "pair " << k;
       EXPECT_EQ(values[k], g.mollifier * g.gap) << "pair " << k;
       EXPECT_LT(std::abs(std::abs(g.normal.z()) - 1.0), 1e-12) << "pair " << k;
     }
@@ -281,8 +260,8 @@ std::pair<double, double> sampled_distance(const Eigen::Matrix<double, 3, 4>& y,
 }
 
 TEST(ContactGapConstraints, DistancesMatchSampledBruteForceOnAFoldedDisc) {
-  const FoldedScene scene(0.02, 2);
-  ContactGapConstraints c(scene.proxy, scene.pairs, FoldedScene::kOffset, scene.model.dimension());
+  const FoldedDiscScene scene(0.02, 2);
+  ContactGapConstraints c(scene.proxy, scene.pairs, kFoldedDiscOffset, scene.model.dimension());
   Eigen::VectorXd values;
   c.evaluate(scene.x, values, nullptr);
   const Eigen::MatrixX3d y = proxy_positions(scene.proxy, scene.x);
@@ -308,7 +287,7 @@ TEST(ContactGapConstraints, DistancesMatchSampledBruteForceOnAFoldedDisc) {
     EXPECT_LT((g.normal * g.distance - (g.closest_point_first - g.closest_point_second)).norm(),
               1e-14);
     const double expected = (c.pair_type(k) == ContactPairType::EdgeEdge ? g.mollifier : 1.0) *
-                            (g.distance - FoldedScene::kOffset);
+                            (g.distance - kFoldedDiscOffset);
     EXPECT_EQ(values[k], expected);
   }
   std::cout << "[ sampled  ] " << c.count() << " pairs; largest (reported - sampled) "
@@ -319,12 +298,12 @@ TEST(ContactGapConstraints, DistancesMatchSampledBruteForceOnAFoldedDisc) {
 // ---- derivatives ---------------------------------------------------------------------------
 
 TEST(ContactGapConstraints, JacobianAndWeightedHessianMatchCentralDifferences) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   for (const bool mollify : {true, false}) {
-    ContactGapConstraints c(scene.proxy, scene.pairs, FoldedScene::kOffset, n,
+    ContactGapConstraints c(scene.proxy, scene.pairs, kFoldedDiscOffset, n,
                             ContactGapOptions{mollify});
     const Eigen::Index m = c.count();
     // Enough of every kind for the test to mean something.
@@ -401,8 +380,8 @@ TEST(ContactGapConstraints, DistanceGradientIsTheWeightedNormal) {
   // Away from zero distance, d(distance)/d y_i = vertex_weights(i) * normal (the closest
   // points move tangentially to first order); pair_distance computes it from the primitives'
   // squared-distance gradient instead.
-  const FoldedScene scene(0.02, 2);
-  ContactGapConstraints c(scene.proxy, scene.pairs, FoldedScene::kOffset, scene.model.dimension());
+  const FoldedDiscScene scene(0.02, 2);
+  ContactGapConstraints c(scene.proxy, scene.pairs, kFoldedDiscOffset, scene.model.dimension());
   double worst = 0.0;
   for (Eigen::Index k = 0; k < c.count(); ++k) {
     const ContactPairDistance D = c.pair_distance(scene.x, k, false);
@@ -417,7 +396,7 @@ TEST(ContactGapConstraints, DistanceGradientIsTheWeightedNormal) {
 // ---- patterns ------------------------------------------------------------------------------
 
 TEST(ContactGapConstraints, PatternsAreTheStencilsAndHoldEveryNonzero) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   // Every 10th candidate of each kind keeps the n finite-difference evaluations below fast.
   const auto every_tenth = [](const Eigen::MatrixX2i& rows) {
@@ -428,7 +407,7 @@ TEST(ContactGapConstraints, PatternsAreTheStencilsAndHoldEveryNonzero) {
   ContactCandidates subset;
   subset.vertex_triangle = every_tenth(scene.pairs.vertex_triangle);
   subset.edge_edge = every_tenth(scene.pairs.edge_edge);
-  ContactGapConstraints c(scene.proxy, subset, FoldedScene::kOffset, n);
+  ContactGapConstraints c(scene.proxy, subset, kFoldedDiscOffset, n);
   const Eigen::Index m = c.count();
 
   // Stencils computed independently by scanning the columns of the (column-major) map.
@@ -546,7 +525,7 @@ TEST(ContactGapConstraints, ZeroDistanceGivesFiniteDerivatives) {
 TEST(ContactGapConstraints, InterpenetratedFoldedDiscStaysFinite) {
   // The upper layer pressed into the lower one (fold radius 0, wobble-free): the mid-surfaces
   // coincide and many pairs have distance exactly 0.
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::VectorXd x = folded_sheet(scene.model, 0.0, 0.0, 0.0);
   ContactCandidateOptions options;
   options.query_distance = 0.05;
@@ -554,7 +533,7 @@ TEST(ContactGapConstraints, InterpenetratedFoldedDiscStaysFinite) {
   const ContactCandidates pairs =
       find_contact_candidates(scene.proxy, proxy_positions(scene.proxy, x), options);
   for (const bool mollify : {true, false}) {
-    ContactGapConstraints c(scene.proxy, pairs, FoldedScene::kOffset, scene.model.dimension(),
+    ContactGapConstraints c(scene.proxy, pairs, kFoldedDiscOffset, scene.model.dimension(),
                             ContactGapOptions{mollify});
     Eigen::VectorXd values;
     Eigen::SparseMatrix<double, Eigen::RowMajor> J = c.jacobian_pattern();
@@ -564,7 +543,7 @@ TEST(ContactGapConstraints, InterpenetratedFoldedDiscStaysFinite) {
       const ContactPairGeometry g = c.pair_geometry(x, k);
       if (g.distance == 0.0) {
         ++zero;
-        EXPECT_EQ(values[k], -g.mollifier * FoldedScene::kOffset);
+        EXPECT_EQ(values[k], -g.mollifier * kFoldedDiscOffset);
         if (g.type == ContactPairType::VertexTriangle) {
           EXPECT_NEAR(g.normal.norm(), 1.0, 1e-14);
         }
@@ -582,7 +561,7 @@ TEST(ContactGapConstraints, InterpenetratedFoldedDiscStaysFinite) {
 }
 
 TEST(ContactGapConstraints, NoPairsGiveEmptyConstraints) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   ContactGapConstraints c(scene.proxy, ContactCandidates{}, 0.1, n + 2);  // 2 extra unknowns
   EXPECT_EQ(c.count(), 0);
@@ -599,16 +578,6 @@ TEST(ContactGapConstraints, NoPairsGiveEmptyConstraints) {
   c.weighted_hessian(x, Eigen::VectorXd(0), H);
 }
 
-template <class F>
-void expect_invalid(F f, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected one naming \"" << fragment << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
-
 TEST(ContactGapConstraints, RejectsBadInputNamingIt) {
   Eigen::MatrixX3d points(5, 3);
   points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2, 0.3, 0.5, 0.3, 0.3, 0.5;
@@ -620,41 +589,52 @@ TEST(ContactGapConstraints, RejectsBadInputNamingIt) {
   ContactCandidates good;
   good.vertex_triangle.resize(1, 2);
   good.vertex_triangle << 3, 0;
-  expect_invalid([&] { ContactGapConstraints(proxy, good, -0.1, 15); }, "offset");
-  expect_invalid([&] { ContactGapConstraints(proxy, good, std::nan(""), 15); }, "offset");
-  expect_invalid([&] { ContactGapConstraints(proxy, good, 0.1, 14); }, "dimension 14");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, good, -0.1, 15); },
+                                     "offset");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, good, std::nan(""), 15); },
+                                     "offset");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, good, 0.1, 14); },
+                                     "dimension 14");
   ContactCandidates bad = good;
   bad.vertex_triangle << 7, 0;
-  expect_invalid([&] { ContactGapConstraints(proxy, bad, 0.1, 15); }, "proxy vertex 7");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, bad, 0.1, 15); },
+                                     "proxy vertex 7");
   bad.vertex_triangle << 3, 1;
-  expect_invalid([&] { ContactGapConstraints(proxy, bad, 0.1, 15); }, "proxy triangle 1");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, bad, 0.1, 15); },
+                                     "proxy triangle 1");
   bad.vertex_triangle << 1, 0;
-  expect_invalid([&] { ContactGapConstraints(proxy, bad, 0.1, 15); }, "is a corner");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, bad, 0.1, 15); },
+                                     "is a corner");
   ContactCandidates ee;
   ee.edge_edge.resize(1, 2);
   ee.edge_edge << 0, 1;  // share vertex 0
-  expect_invalid([&] { ContactGapConstraints(proxy, ee, 0.1, 15); }, "share proxy vertex 0");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, ee, 0.1, 15); },
+                                     "share proxy vertex 0");
   ee.edge_edge << 2, 9;
-  expect_invalid([&] { ContactGapConstraints(proxy, ee, 0.1, 15); }, "proxy edge 9");
+  expect_invalid_argument_containing([&] { ContactGapConstraints(proxy, ee, 0.1, 15); },
+                                     "proxy edge 9");
 
   ContactGapConstraints c(proxy, good, 0.1, 15);
   Eigen::VectorXd values;
-  expect_invalid([&] { c.evaluate(Eigen::VectorXd::Zero(14), values, nullptr); },
-                 "x has 14 entries");
+  expect_invalid_argument_containing(
+      [&] { c.evaluate(Eigen::VectorXd::Zero(14), values, nullptr); }, "x has 14 entries");
   Eigen::SparseMatrix<double, Eigen::RowMajor> wrong(1, 15);
-  expect_invalid([&] { c.evaluate(flatten(points), values, &wrong); }, "jacobian_pattern");
+  expect_invalid_argument_containing([&] { c.evaluate(flatten(points), values, &wrong); },
+                                     "jacobian_pattern");
   Eigen::SparseMatrix<double> wrong_h(15, 15);
-  expect_invalid([&] { c.weighted_hessian(flatten(points), Eigen::VectorXd::Ones(1), wrong_h); },
-                 "hessian_pattern");
+  expect_invalid_argument_containing(
+      [&] { c.weighted_hessian(flatten(points), Eigen::VectorXd::Ones(1), wrong_h); },
+      "hessian_pattern");
   Eigen::SparseMatrix<double> H = c.hessian_pattern();
-  expect_invalid([&] { c.weighted_hessian(flatten(points), Eigen::VectorXd::Ones(2), H); },
-                 "weights has 2 entries");
-  expect_invalid([&] { c.pair_geometry(flatten(points), 1); }, "pair index 1");
+  expect_invalid_argument_containing(
+      [&] { c.weighted_hessian(flatten(points), Eigen::VectorXd::Ones(2), H); },
+      "weights has 2 entries");
+  expect_invalid_argument_containing([&] { c.pair_geometry(flatten(points), 1); }, "pair index 1");
   // A triangle collapsed onto a segment at x: the primitive's error, prefixed with the pair.
   Eigen::MatrixX3d collapsed = points;
   collapsed.row(2) << 2, 0, 0;
-  expect_invalid([&] { c.evaluate(flatten(collapsed), values, nullptr); },
-                 "contact pair 0 (proxy vertex 3, proxy triangle 0)");
+  expect_invalid_argument_containing([&] { c.evaluate(flatten(collapsed), values, nullptr); },
+                                     "contact pair 0 (proxy vertex 3, proxy triangle 0)");
 }
 
 }  // namespace

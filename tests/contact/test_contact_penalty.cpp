@@ -22,48 +22,15 @@
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
 #include "support/dense_symmetric.hpp"
-#include "support/sheet_states.hpp"
+#include "tests/support/expect_invalid_argument.hpp"
+#include "tests/support/folded_disc_scene.hpp"
 
 namespace growshell {
 namespace {
 
 using test_support::dense_symmetric;
-using test_support::folded_sheet;
-
-
-/// 5-ring unit disc folded about X = 0 with the layers 0.08 m apart (proxy spacing ~0.12 m).
-struct FoldedScene {
-  static constexpr double kRho = 0.04;
-  ShellModel model;
-  ContactProxy proxy;
-  Eigen::VectorXd x;
-  ContactCandidates pairs;
-
-  FoldedScene(double wobble, int segments_per_edge)
-      : model(make_disc_mesh([] {
-                DiscMeshOptions o;
-                o.rings = 5;
-                return o;
-              }()),
-              ShellModelSettings{}),
-        proxy(make_contact_proxy(model, segments_per_edge)),
-        x(folded_sheet(model, 0.0, kRho, wobble)) {
-    ContactCandidateOptions options;
-    options.query_distance = 0.12;
-    options.exclusion_radius = 0.2;
-    pairs = find_contact_candidates(proxy, proxy_positions(proxy, x), options);
-  }
-};
-
-template <class F>
-void expect_invalid(F f, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected one naming \"" << fragment << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
+using test_support::expect_invalid_argument_containing;
+using test_support::FoldedDiscScene;
 
 TEST(ContactPenalty, PointOverTriangleMatchesTheClosedForm) {
   // Identity proxy: the point (0.2, 0.3, z) over the face of (0,0,0), (1,0,0), (0,1,0):
@@ -104,7 +71,7 @@ TEST(ContactPenalty, PointOverTriangleMatchesTheClosedForm) {
 }
 
 TEST(ContactPenalty, ZeroWhenEveryGapExceedsTheOffset) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   // The layers are 0.08 +- 0.04 m apart (wobble 0.02 on each); find the smallest distance and
   // put the offset below it.
   ContactPenalty probe(scene.proxy, scene.pairs, 0.0, 1.0, scene.model.dimension());
@@ -127,7 +94,7 @@ TEST(ContactPenalty, ZeroWhenEveryGapExceedsTheOffset) {
 TEST(ContactPenalty, ValueIsTheSumOverActivePairs) {
   // Recomputed from the pairs' distances and an independent evaluation of the mollifier from
   // the proxy's rest and current positions.
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const double k = 3e3, offset = 0.1;
   const Eigen::MatrixX3d y = proxy_positions(scene.proxy, scene.x);
   const Eigen::MatrixX3d& Y = scene.proxy.reference_positions;
@@ -167,7 +134,7 @@ TEST(ContactPenalty, ValueIsTheSumOverActivePairs) {
 }
 
 TEST(ContactPenalty, GradientAndHessianMatchCentralDifferences) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   const double k = 3e3, offset = 0.1;
   std::mt19937 rng(11);
@@ -228,7 +195,7 @@ TEST(ContactPenalty, GradientAndHessianMatchCentralDifferences) {
 TEST(ContactPenalty, HessianPatternHoldsEveryNonzero) {
   // The full Hessian by central differences of the gradient along every coordinate: it agrees
   // with the assembled one, and every entry above 1e-6 of the largest is in the pattern.
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 3e3, n);
   Eigen::SparseMatrix<double> H = penalty.hessian_pattern();
@@ -271,7 +238,7 @@ TEST(ContactPenalty, HessianPatternHoldsEveryNonzero) {
 }
 
 TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   const ShellModel& shell = scene.model;
   const double phi_e = 0.5;
@@ -320,7 +287,7 @@ TEST(ContactPenalty, PenalizedEnergyIsShellPlusPenalty) {
 }
 
 TEST(ContactPenalty, PenalizedEnergyIsAFamilyInTheShellsExcessAngle) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
   const ShellModel& shell = scene.model;
   ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 3e3, n);
@@ -342,31 +309,37 @@ TEST(ContactPenalty, PenalizedEnergyIsAFamilyInTheShellsExcessAngle) {
 
 TEST(ContactPenalty, StiffnessScaleAndMeanSpacing) {
   EXPECT_NEAR(contact_stiffness_scale(1e4, 0.02, 0.01), 1e4 * 1e-4 / 0.02, 1e-12);
-  const FoldedScene scene(0.0, 2);
+  const FoldedDiscScene scene(0.0, 2);
   const double l = proxy_mean_edge_length(scene.proxy);
   // 5 rings on the unit disc, 2 segments per element edge: spacing 1.11..1.40 R / (2 N).
   EXPECT_GT(l, 1.0 / 10.0);
   EXPECT_LT(l, 1.45 / 10.0);
-  expect_invalid([] { contact_stiffness_scale(1e4, 0.0, 0.01); }, "thickness");
-  expect_invalid([] { contact_stiffness_scale(-1.0, 0.02, 0.01); }, "youngs_modulus");
-  expect_invalid([] { contact_stiffness_scale(1e4, 0.02, std::nan("")); }, "spacing");
+  expect_invalid_argument_containing([] { contact_stiffness_scale(1e4, 0.0, 0.01); }, "thickness");
+  expect_invalid_argument_containing([] { contact_stiffness_scale(-1.0, 0.02, 0.01); },
+                                     "youngs_modulus");
+  expect_invalid_argument_containing([] { contact_stiffness_scale(1e4, 0.02, std::nan("")); },
+                                     "spacing");
 }
 
 TEST(ContactPenalty, RejectsBadInputNamingIt) {
-  const FoldedScene scene(0.02, 1);
+  const FoldedDiscScene scene(0.02, 1);
   const Eigen::Index n = scene.model.dimension();
-  expect_invalid([&] { ContactPenalty(scene.proxy, scene.pairs, 0.1, -1.0, n); }, "stiffness");
+  expect_invalid_argument_containing(
+      [&] { ContactPenalty(scene.proxy, scene.pairs, 0.1, -1.0, n); }, "stiffness");
   ContactPenalty penalty(scene.proxy, scene.pairs, 0.1, 1.0, n);
-  expect_invalid([&] { penalty.set_stiffness(std::nan("")); }, "stiffness");
-  expect_invalid([&] { penalty.evaluate(Eigen::VectorXd::Zero(n - 1), nullptr, nullptr); },
-                 "x has");
+  expect_invalid_argument_containing([&] { penalty.set_stiffness(std::nan("")); }, "stiffness");
+  expect_invalid_argument_containing(
+      [&] { penalty.evaluate(Eigen::VectorXd::Zero(n - 1), nullptr, nullptr); }, "x has");
   Eigen::SparseMatrix<double> wrong(n, n);
-  expect_invalid([&] { penalty.evaluate(scene.x, nullptr, &wrong); }, "hessian_pattern");
+  expect_invalid_argument_containing([&] { penalty.evaluate(scene.x, nullptr, &wrong); },
+                                     "hessian_pattern");
   ContactPenalty bigger(scene.proxy, scene.pairs, 0.1, 1.0, n + 1);
   const ShellModel& shell = scene.model;
-  expect_invalid([&] { PenalizedEnergy(shell, bigger); }, "penalty has " + std::to_string(n + 1));
+  expect_invalid_argument_containing([&] { PenalizedEnergy(shell, bigger); },
+                                     "penalty has " + std::to_string(n + 1));
   PenalizedEnergy total(shell, penalty);
-  expect_invalid([&] { total.evaluate(scene.x, 0.5, nullptr, &wrong); }, "hessian_pattern");
+  expect_invalid_argument_containing([&] { total.evaluate(scene.x, 0.5, nullptr, &wrong); },
+                                     "hessian_pattern");
 }
 
 }  // namespace

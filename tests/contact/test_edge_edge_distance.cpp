@@ -14,110 +14,68 @@
 #include <string>
 
 #include "libshell/contact/edge_edge_distance.hpp"
+#include "tests/support/expect_invalid_argument.hpp"
+#include "tests/support/finite_difference_errors.hpp"
+#include "tests/support/random_rigid_motion.hpp"
 
 namespace growshell {
 namespace {
 
 using Eigen::Vector3d;
-using R = EdgeEdgeRegion;
+using EE = EdgeEdgeRegion;
+using test_support::expect_invalid_argument_containing;
+using test_support::FdErrors;
+using test_support::finite_difference_errors;
+using test_support::kFdStep;
+using test_support::kFdTolerance;
+using test_support::random_motion;
+using test_support::random_point;
 
-constexpr std::array<R, 9> kAllRegions = {R::EdgeEdge, R::P0EdgeQ, R::P1EdgeQ,
-                                          R::Q0EdgeP,  R::Q1EdgeP, R::P0Q0,
-                                          R::P0Q1,     R::P1Q0,    R::P1Q1};
+constexpr std::array<EE, 9> kAllEdgeEdgeRegions = {EE::EdgeEdge, EE::P0EdgeQ, EE::P1EdgeQ,
+                                                   EE::Q0EdgeP,  EE::Q1EdgeP, EE::P0Q0,
+                                                   EE::P0Q1,     EE::P1Q0,    EE::P1Q1};
 
 /// (p0, p1, q0, q1) stacked as in the library's 12-entry order.
-Vector12d stack(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0, const Vector3d& q1) {
+Vector12d stack_edge_pair(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0,
+                          const Vector3d& q1) {
   Vector12d x;
   x << p0, p1, q0, q1;
   return x;
 }
 
-double value_at(const Vector12d& x, R region) {
+double edge_edge_value_at(const Vector12d& x, EE region) {
   return edge_edge_distance_squared(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                     x.segment<3>(9), region);
 }
-Vector12d gradient_at(const Vector12d& x, R region) {
+Vector12d edge_edge_gradient_at(const Vector12d& x, EE region) {
   return edge_edge_distance_squared_gradient(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                              x.segment<3>(9), region);
 }
-Matrix12d hessian_at(const Vector12d& x, R region) {
+Matrix12d edge_edge_hessian_at(const Vector12d& x, EE region) {
   return edge_edge_distance_squared_hessian(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                             x.segment<3>(9), region);
 }
-EdgeEdgeResult closest_at(const Vector12d& x) {
+EdgeEdgeResult edge_edge_closest_at(const Vector12d& x) {
   return edge_edge_closest(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), x.segment<3>(9));
 }
 
-struct FdErrors {
-  double gradient = 0.0;
-  double hessian = 0.0;
-};
-
-/// Largest |analytic - central difference| relative to the largest analytic entry, for the
-/// gradient (differencing `value`) and the Hessian (differencing `gradient`).
-FdErrors finite_difference_errors(const Vector12d& x, double step,
-                                  const std::function<double(const Vector12d&)>& value,
-                                  const std::function<Vector12d(const Vector12d&)>& gradient,
-                                  const std::function<Matrix12d(const Vector12d&)>& hessian) {
-  const Vector12d g = gradient(x);
-  const Matrix12d H = hessian(x);
-  Vector12d g_fd;
-  Matrix12d H_fd;
-  for (int i = 0; i < 12; ++i) {
-    Vector12d xp = x, xm = x;
-    xp(i) += step;
-    xm(i) -= step;
-    const double width = xp(i) - xm(i);  // the step actually taken after rounding
-    g_fd(i) = (value(xp) - value(xm)) / width;
-    H_fd.col(i) = (gradient(xp) - gradient(xm)) / width;
-  }
-  return {(g - g_fd).cwiseAbs().maxCoeff() / g.cwiseAbs().maxCoeff(),
-          (H - H_fd).cwiseAbs().maxCoeff() / H.cwiseAbs().maxCoeff()};
-}
-
-FdErrors region_fd_errors(const Vector12d& x, R region, double step) {
+FdErrors edge_edge_fd_errors(const Vector12d& x, EE region, double step) {
   return finite_difference_errors(
-      x, step, [&](const Vector12d& y) { return value_at(y, region); },
-      [&](const Vector12d& y) { return gradient_at(y, region); },
-      [&](const Vector12d& y) { return hessian_at(y, region); });
-}
-
-Vector3d random_point(std::mt19937& rng, double half_width) {
-  std::uniform_real_distribution<double> u(-half_width, half_width);
-  return {u(rng), u(rng), u(rng)};
-}
-
-Eigen::Isometry3d random_motion(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  // Draws in sequence (function arguments have no evaluation order), so runs are reproducible.
-  const double w = g(rng), x = g(rng), y = g(rng), z = g(rng);
-  const Eigen::Quaterniond q = Eigen::Quaterniond(w, x, y, z).normalized();
-  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-  motion.linear() = q.toRotationMatrix();
-  motion.translation() = random_point(rng, 5.0);
-  return motion;
+      x, step, [&](const Vector12d& y) { return edge_edge_value_at(y, region); },
+      [&](const Vector12d& y) { return edge_edge_gradient_at(y, region); },
+      [&](const Vector12d& y) { return edge_edge_hessian_at(y, region); });
 }
 
 double sin_squared_angle(const Vector3d& e0, const Vector3d& e1) {
   return e0.cross(e1).squaredNorm() / (e0.squaredNorm() * e1.squaredNorm());
 }
 
-void expect_invalid_argument_containing(const std::function<void()>& call,
-                                        const std::string& fragment) {
-  try {
-    call();
-    ADD_FAILURE() << "no exception; expected one mentioning \"" << fragment << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
-
 // ---- Exact configurations -------------------------------------------------------------------
 
-struct ExactCase {
+struct EdgeEdgeCase {
   const char* name;
   Vector3d p0, p1, q0, q1;
-  R region;
+  EE region;
   double distance_squared;
   double s, t;
   /// Two candidates at exactly the same distance: only the identity frame decides the tie by
@@ -127,34 +85,34 @@ struct ExactCase {
 
 // Distances by hand. "Skew" pairs: P along z above the x axis, Q on the x axis, so the lines
 // meet at the origin outside one or both segments.
-const std::array<ExactCase, 12> kExactCases = {{
-    {"crossing", {-1, 0, 0}, {1, 0, 0}, {0, -1, 1}, {0, 1, 1}, R::EdgeEdge, 1.0, 0.5, 0.5},
-    {"p0 over Q", {0, 0, 1}, {0, 0, 3}, {-1, 0, 0}, {1, 0, 0}, R::P0EdgeQ, 1.0, 0.0, 0.5},
-    {"p1 over Q", {0, 0, 3}, {0, 0, 1}, {-1, 0, 0}, {1, 0, 0}, R::P1EdgeQ, 1.0, 1.0, 0.5},
-    {"q0 over P", {-1, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 3}, R::Q0EdgeP, 1.0, 0.5, 0.0},
-    {"q1 over P", {-1, 0, 0}, {1, 0, 0}, {0, 0, 3}, {0, 0, 1}, R::Q1EdgeP, 1.0, 0.5, 1.0},
-    {"p0-q0", {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {3, 0, 0}, R::P0Q0, 2.0, 0.0, 0.0},
-    {"p0-q1", {0, 0, 1}, {0, 0, 3}, {3, 0, 0}, {1, 0, 0}, R::P0Q1, 2.0, 0.0, 1.0},
-    {"p1-q0", {0, 0, 3}, {0, 0, 1}, {1, 0, 0}, {3, 0, 0}, R::P1Q0, 2.0, 1.0, 0.0},
-    {"p1-q1", {0, 0, 3}, {0, 0, 1}, {3, 0, 0}, {1, 0, 0}, R::P1Q1, 2.0, 1.0, 1.0},
+const std::array<EdgeEdgeCase, 12> kEdgeEdgeCases = {{
+    {"crossing", {-1, 0, 0}, {1, 0, 0}, {0, -1, 1}, {0, 1, 1}, EE::EdgeEdge, 1.0, 0.5, 0.5},
+    {"p0 over Q", {0, 0, 1}, {0, 0, 3}, {-1, 0, 0}, {1, 0, 0}, EE::P0EdgeQ, 1.0, 0.0, 0.5},
+    {"p1 over Q", {0, 0, 3}, {0, 0, 1}, {-1, 0, 0}, {1, 0, 0}, EE::P1EdgeQ, 1.0, 1.0, 0.5},
+    {"q0 over P", {-1, 0, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 3}, EE::Q0EdgeP, 1.0, 0.5, 0.0},
+    {"q1 over P", {-1, 0, 0}, {1, 0, 0}, {0, 0, 3}, {0, 0, 1}, EE::Q1EdgeP, 1.0, 0.5, 1.0},
+    {"p0-q0", {0, 0, 1}, {0, 0, 3}, {1, 0, 0}, {3, 0, 0}, EE::P0Q0, 2.0, 0.0, 0.0},
+    {"p0-q1", {0, 0, 1}, {0, 0, 3}, {3, 0, 0}, {1, 0, 0}, EE::P0Q1, 2.0, 0.0, 1.0},
+    {"p1-q0", {0, 0, 3}, {0, 0, 1}, {1, 0, 0}, {3, 0, 0}, EE::P1Q0, 2.0, 1.0, 0.0},
+    {"p1-q1", {0, 0, 3}, {0, 0, 1}, {3, 0, 0}, {1, 0, 0}, EE::P1Q1, 2.0, 1.0, 1.0},
     // Parallel edges: the boundary candidates in the order p0, p1, q0, q1 decide ties.
     {"parallel overlapping",
      {0, 0, 0},
      {2, 0, 0},
      {1, 1, 0},
      {3, 1, 0},
-     R::P1EdgeQ,
+     EE::P1EdgeQ,
      1.0,
      1.0,
      0.5,
      true},
-    {"parallel disjoint", {0, 0, 0}, {1, 0, 0}, {2, 1, 0}, {3, 1, 0}, R::P1Q0, 2.0, 1.0, 0.0},
+    {"parallel disjoint", {0, 0, 0}, {1, 0, 0}, {2, 1, 0}, {3, 1, 0}, EE::P1Q0, 2.0, 1.0, 0.0},
     {"collinear overlapping",
      {0, 0, 0},
      {2, 0, 0},
      {1, 0, 0},
      {3, 0, 0},
-     R::P1EdgeQ,
+     EE::P1EdgeQ,
      0.0,
      1.0,
      0.5,
@@ -163,8 +121,8 @@ const std::array<ExactCase, 12> kExactCases = {{
 
 TEST(EdgeEdgeDistance, ExactConfigurationsHitEveryRegion) {
   std::mt19937 rng(3);
-  std::map<R, int> hits;
-  for (const ExactCase& ex : kExactCases) {
+  std::map<EE, int> hits;
+  for (const EdgeEdgeCase& ex : kEdgeEdgeCases) {
     // Identity frame, then random rigid frames; only the identity frame keeps parallel edges
     // exactly parallel, and rounding in the others (~1e-16) stays far below the threshold.
     for (int frame = 0; frame < 4; ++frame) {
@@ -184,7 +142,7 @@ TEST(EdgeEdgeDistance, ExactConfigurationsHitEveryRegion) {
     }
     ++hits[ex.region];
   }
-  for (R region : kAllRegions) EXPECT_GT(hits[region], 0) << to_string(region);
+  for (EE region : kAllEdgeEdgeRegions) EXPECT_GT(hits[region], 0) << to_string(region);
 }
 
 // ---- Brute force ----------------------------------------------------------------------------
@@ -197,7 +155,7 @@ TEST(EdgeEdgeDistance, AgreesWithBruteForceSampling) {
   std::mt19937 rng(11);
   constexpr int kConfigurations = 400;
   constexpr int kSubdivisions = 100;
-  std::map<R, int> hits;
+  std::map<EE, int> hits;
   double worst_gap = 0.0;
   for (int trial = 0; trial < kConfigurations; ++trial) {
     const Vector3d p0 = random_point(rng, 1.0), p1 = random_point(rng, 1.0),
@@ -228,7 +186,7 @@ TEST(EdgeEdgeDistance, AgreesWithBruteForceSampling) {
                   1e-12 * (1.0 + r.distance_squared));
     }
   }
-  for (R region : kAllRegions) EXPECT_GT(hits[region], 0) << to_string(region);
+  for (EE region : kAllEdgeEdgeRegions) EXPECT_GT(hits[region], 0) << to_string(region);
   std::cout << "[ measured ] brute force: worst (sampled - exact) / sampling bound = " << worst_gap
             << " over " << kConfigurations << " configurations\n";
 }
@@ -238,37 +196,32 @@ TEST(EdgeEdgeDistance, AgreesWithBruteForceSampling) {
 /// Random pairs collected until every region has `per_region`. Pairs closer to parallel than
 /// sin^2 = 0.05 or with an edge shorter than 0.2 are skipped, so third derivatives stay O(1);
 /// near-parallel pairs have their own test.
-std::map<R, std::vector<Vector12d>> configurations_per_region(std::mt19937& rng, int per_region) {
-  std::map<R, std::vector<Vector12d>> out;
+std::map<EE, std::vector<Vector12d>> edge_pair_configurations(std::mt19937& rng, int per_region) {
+  std::map<EE, std::vector<Vector12d>> out;
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const Vector3d p0 = random_point(rng, 1.0), p1 = random_point(rng, 1.0),
                    q0 = random_point(rng, 1.0), q1 = random_point(rng, 1.0);
     if ((p1 - p0).norm() < 0.2 || (q1 - q0).norm() < 0.2) continue;
     if (sin_squared_angle(p1 - p0, q1 - q0) < 0.05) continue;
-    const R region = classify_edge_edge(p0, p1, q0, q1);
+    const EE region = classify_edge_edge(p0, p1, q0, q1);
     if (static_cast<int>(out[region].size()) < per_region) {
-      out[region].push_back(stack(p0, p1, q0, q1));
+      out[region].push_back(stack_edge_pair(p0, p1, q0, q1));
     }
     bool done = true;
-    for (R r : kAllRegions) done = done && static_cast<int>(out[r].size()) >= per_region;
+    for (EE r : kAllEdgeEdgeRegions) done = done && static_cast<int>(out[r].size()) >= per_region;
     if (done) break;
   }
   return out;
 }
 
-// Same budget as the point-triangle test: step 1e-6 on O(1) coordinates gives ~1e-10 relative
-// FD error; 1e-6 relative to the largest entry fails for any wrong term.
-constexpr double kStep = 1e-6;
-constexpr double kFdTolerance = 1e-6;
-
 TEST(EdgeEdgeDistance, DerivativesMatchFiniteDifferencesInEveryRegion) {
   std::mt19937 rng(17);
-  const auto configurations = configurations_per_region(rng, 30);
+  const auto configurations = edge_pair_configurations(rng, 30);
   FdErrors worst;
-  for (R region : kAllRegions) {
+  for (EE region : kAllEdgeEdgeRegions) {
     ASSERT_EQ(configurations.at(region).size(), 30u) << to_string(region);
     for (const Vector12d& x : configurations.at(region)) {
-      const FdErrors e = region_fd_errors(x, region, kStep);
+      const FdErrors e = edge_edge_fd_errors(x, region, kFdStep);
       EXPECT_LT(e.gradient, kFdTolerance) << to_string(region);
       EXPECT_LT(e.hessian, kFdTolerance) << to_string(region);
       worst.gradient = std::max(worst.gradient, e.gradient);
@@ -284,13 +237,13 @@ TEST(EdgeEdgeDistance, DerivativeIdentities) {
   // blocks and Hessian block columns sum to zero); rotation invariance (sum x_i x g_i = 0);
   // homogeneity of degree 2 (x . g = 2 f, H x = g). All to rounding, 1e-12 relative.
   std::mt19937 rng(23);
-  const auto configurations = configurations_per_region(rng, 10);
-  for (R region : kAllRegions) {
+  const auto configurations = edge_pair_configurations(rng, 10);
+  for (EE region : kAllEdgeEdgeRegions) {
     for (const Vector12d& x : configurations.at(region)) {
       SCOPED_TRACE(to_string(region));
-      const double f = value_at(x, region);
-      const Vector12d g = gradient_at(x, region);
-      const Matrix12d H = hessian_at(x, region);
+      const double f = edge_edge_value_at(x, region);
+      const Vector12d g = edge_edge_gradient_at(x, region);
+      const Matrix12d H = edge_edge_hessian_at(x, region);
       const double gs = g.cwiseAbs().maxCoeff(), hs = H.cwiseAbs().maxCoeff();
       const double xs = x.cwiseAbs().maxCoeff();
       // The one-call form is the same computation, so bitwise equal.
@@ -322,22 +275,23 @@ TEST(EdgeEdgeDistance, DerivativesAcrossScalesAndFarFromOrigin) {
   // of the quotient (those errors nearly cancel between x +- h; measured ~4e-10), still inside
   // the 1e-6 tolerance.
   std::mt19937 rng(29);
-  const auto configurations = configurations_per_region(rng, 4);
+  const auto configurations = edge_pair_configurations(rng, 4);
   FdErrors worst;
   for (double scale : {1e-3, 1.0, 1e3}) {
     for (double offset : {0.0, 1e3}) {
-      for (R region : kAllRegions) {
+      for (EE region : kAllEdgeEdgeRegions) {
         for (const Vector12d& x0 : configurations.at(region)) {
           Vector12d x = scale * x0;
           for (int k = 0; k < 4; ++k) x.segment<3>(3 * k) += Vector3d::Constant(offset * scale);
-          ASSERT_EQ(closest_at(x).region, region) << "scale " << scale << " offset " << offset;
-          const FdErrors e = region_fd_errors(x, region, kStep * scale);
+          ASSERT_EQ(edge_edge_closest_at(x).region, region)
+              << "scale " << scale << " offset " << offset;
+          const FdErrors e = edge_edge_fd_errors(x, region, kFdStep * scale);
           EXPECT_LT(e.gradient, kFdTolerance) << to_string(region) << " scale " << scale;
           EXPECT_LT(e.hessian, kFdTolerance) << to_string(region) << " scale " << scale;
           worst.gradient = std::max(worst.gradient, e.gradient);
           worst.hessian = std::max(worst.hessian, e.hessian);
-          const Vector12d g1 = gradient_at(scale * x0, region);
-          EXPECT_LE((g1 - scale * gradient_at(x0, region)).cwiseAbs().maxCoeff(),
+          const Vector12d g1 = edge_edge_gradient_at(scale * x0, region);
+          EXPECT_LE((g1 - scale * edge_edge_gradient_at(x0, region)).cwiseAbs().maxCoeff(),
                     1e-12 * g1.cwiseAbs().maxCoeff());
         }
       }
@@ -370,27 +324,27 @@ TEST(EdgeEdgeDistance, NearlyParallelEdgesPickEndpointRegionsWithinTheStatedBoun
       const auto q = crossing_pair(angle, T);
       const EdgeEdgeResult r = edge_edge_closest(q[0], q[1], q[2], q[3]);
       if (sin_squared < kParallelEdgeTolerance) {
-        EXPECT_NE(r.region, R::EdgeEdge);
+        EXPECT_NE(r.region, EE::EdgeEdge);
         // Overestimate at most (1/4) sin^2 min(|e0|^2, |e1|^2) = sin^2 / 4 here (|e0| = 1):
         // the endpoints p0, p1 lie 0.5 along P from the interior minimiser, so the bound is
         // attained; 1e-15 absorbs rounding of the O(0.1) distances.
         EXPECT_GE(r.distance_squared - 0.09, -1e-15);
         EXPECT_LE(r.distance_squared - 0.09, 0.25 * sin_squared + 1e-15);
       } else {
-        EXPECT_EQ(r.region, R::EdgeEdge) << to_string(r.region);
+        EXPECT_EQ(r.region, EE::EdgeEdge) << to_string(r.region);
         // Relative rounding ~ eps / sin(angle) <= 1e-11 in the cross product.
         EXPECT_NEAR(r.distance_squared, 0.09, 1e-10);
       }
       // Derivatives of the classified region are finite; so are the line-line ones even
       // below the threshold, as long as the edges are not exactly parallel.
-      const Vector12d x = stack(q[0], q[1], q[2], q[3]);
-      EXPECT_TRUE(gradient_at(x, r.region).allFinite());
-      EXPECT_TRUE(hessian_at(x, r.region).allFinite());
-      EXPECT_TRUE(gradient_at(x, R::EdgeEdge).allFinite());
-      EXPECT_TRUE(hessian_at(x, R::EdgeEdge).allFinite());
+      const Vector12d x = stack_edge_pair(q[0], q[1], q[2], q[3]);
+      EXPECT_TRUE(edge_edge_gradient_at(x, r.region).allFinite());
+      EXPECT_TRUE(edge_edge_hessian_at(x, r.region).allFinite());
+      EXPECT_TRUE(edge_edge_gradient_at(x, EE::EdgeEdge).allFinite());
+      EXPECT_TRUE(edge_edge_hessian_at(x, EE::EdgeEdge).allFinite());
       // At angle 1e-8 the cross product has relative rounding ~1e-16 / 1e-8 in rotated
       // frames, hence 1e-6 relative on the line-line value.
-      EXPECT_NEAR(value_at(x, R::EdgeEdge), 0.09, 1e-6 * 0.09);
+      EXPECT_NEAR(edge_edge_value_at(x, EE::EdgeEdge), 0.09, 1e-6 * 0.09);
     }
   }
 }
@@ -398,13 +352,16 @@ TEST(EdgeEdgeDistance, NearlyParallelEdgesPickEndpointRegionsWithinTheStatedBoun
 TEST(EdgeEdgeDistance, ExactlyParallelEdges) {
   const auto q = crossing_pair(0.0, Eigen::Isometry3d::Identity());
   const EdgeEdgeResult r = edge_edge_closest(q[0], q[1], q[2], q[3]);
-  EXPECT_EQ(r.region, R::P0EdgeQ);
+  EXPECT_EQ(r.region, EE::P0EdgeQ);
   EXPECT_DOUBLE_EQ(r.distance_squared, 0.09);
-  const Vector12d x = stack(q[0], q[1], q[2], q[3]);
-  EXPECT_TRUE(hessian_at(x, r.region).allFinite());
-  expect_invalid_argument_containing([&] { gradient_at(x, R::EdgeEdge); }, "exactly parallel");
-  expect_invalid_argument_containing([&] { hessian_at(x, R::EdgeEdge); }, "exactly parallel");
-  expect_invalid_argument_containing([&] { value_at(x, R::EdgeEdge); }, "exactly parallel");
+  const Vector12d x = stack_edge_pair(q[0], q[1], q[2], q[3]);
+  EXPECT_TRUE(edge_edge_hessian_at(x, r.region).allFinite());
+  expect_invalid_argument_containing([&] { edge_edge_gradient_at(x, EE::EdgeEdge); },
+                                     "exactly parallel");
+  expect_invalid_argument_containing([&] { edge_edge_hessian_at(x, EE::EdgeEdge); },
+                                     "exactly parallel");
+  expect_invalid_argument_containing([&] { edge_edge_value_at(x, EE::EdgeEdge); },
+                                     "exactly parallel");
 }
 
 TEST(EdgeEdgeDistance, LineLineDerivativesAtSmallAnglesMatchFiniteDifferences) {
@@ -432,23 +389,24 @@ TEST(EdgeEdgeDistance, LineLineDerivativesAtSmallAnglesMatchFiniteDifferences) {
       const double back = 0.6 + 0.2 * u(rng), ahead = 0.6 + 0.2 * u(rng);
       const Vector3d centre(crossing, 0.0, gap), direction(std::cos(turn), std::sin(turn), 0.0);
       const Eigen::Isometry3d T = random_motion(rng);
-      const Vector12d x = stack(T * Vector3d(0, 0, 0), T * Vector3d(1, 0, 0),
-                                T * (centre - back * direction), T * (centre + ahead * direction));
-      ASSERT_EQ(closest_at(x).region, R::EdgeEdge);
-      const Vector12d g = gradient_at(x, R::EdgeEdge);
-      const Matrix12d H = hessian_at(x, R::EdgeEdge);
+      const Vector12d x =
+          stack_edge_pair(T * Vector3d(0, 0, 0), T * Vector3d(1, 0, 0),
+                          T * (centre - back * direction), T * (centre + ahead * direction));
+      ASSERT_EQ(edge_edge_closest_at(x).region, EE::EdgeEdge);
+      const Vector12d g = edge_edge_gradient_at(x, EE::EdgeEdge);
+      const Matrix12d H = edge_edge_hessian_at(x, EE::EdgeEdge);
       Vector12d centred = x;
       Vector3d centroid = Vector3d::Zero();
       for (int k = 0; k < 4; ++k) centroid += x.segment<3>(3 * k) / 4.0;
       for (int k = 0; k < 4; ++k) centred.segment<3>(3 * k) -= centroid;
       EXPECT_LE((H * centred - g).cwiseAbs().maxCoeff(),
                 1e-12 * H.cwiseAbs().maxCoeff() * centred.cwiseAbs().maxCoeff());
-      const FdErrors e_hessian = region_fd_errors(x, R::EdgeEdge, 1e-4 * angle);
+      const FdErrors e_hessian = edge_edge_fd_errors(x, EE::EdgeEdge, 1e-4 * angle);
       EXPECT_LT(e_hessian.hessian, kFdTolerance);
       worst.hessian = std::max(worst.hessian, e_hessian.hessian);
       if (angle >= 1e-2) {
         const FdErrors e_gradient =
-            region_fd_errors(x, R::EdgeEdge, 1e-4 * angle * std::sqrt(angle));
+            edge_edge_fd_errors(x, EE::EdgeEdge, 1e-4 * angle * std::sqrt(angle));
         EXPECT_LT(e_gradient.gradient, kFdTolerance);
         worst.gradient = std::max(worst.gradient, e_gradient.gradient);
       }
@@ -501,7 +459,7 @@ TEST(EdgeEdgeDistance, MollifierDerivativesMatchFiniteDifferences) {
                                      y.segment<3>(9)};
     };
     const FdErrors e = finite_difference_errors(
-        x, kStep,
+        x, kFdStep,
         [&](const Vector12d& y) {
           const auto q = split(y);
           return edge_edge_mollifier(q[0], q[1], q[2], q[3], eps_x);
@@ -531,7 +489,7 @@ TEST(EdgeEdgeDistance, DegenerateInputThrowsNamingTheProblem) {
                                      "edge (p0, p1) has zero length");
   expect_invalid_argument_containing([&] { classify_edge_edge(p0, p1, q1, q1); },
                                      "edge (q0, q1) has zero length");
-  for (R region : kAllRegions) {
+  for (EE region : kAllEdgeEdgeRegions) {
     expect_invalid_argument_containing(
         [&] { edge_edge_distance_squared_hessian(p0, p1, q0, q0, region); }, "zero length");
   }
@@ -541,7 +499,7 @@ TEST(EdgeEdgeDistance, DegenerateInputThrowsNamingTheProblem) {
   expect_invalid_argument_containing(
       [&] {
         edge_edge_distance_squared_gradient(
-            p0, Vector3d(std::numeric_limits<double>::infinity(), 0, 0), q0, q1, R::EdgeEdge);
+            p0, Vector3d(std::numeric_limits<double>::infinity(), 0, 0), q0, q1, EE::EdgeEdge);
       },
       "point p1");
 }

@@ -15,79 +15,54 @@
 #include <string>
 
 #include "libshell/contact/point_triangle_distance.hpp"
+#include "tests/support/expect_invalid_argument.hpp"
+#include "tests/support/finite_difference_errors.hpp"
+#include "tests/support/random_rigid_motion.hpp"
 
 namespace growshell {
 namespace {
 
 using Eigen::Vector3d;
-using R = PointTriangleRegion;
+using PT = PointTriangleRegion;
+using test_support::expect_invalid_argument_containing;
+using test_support::FdErrors;
+using test_support::kFdStep;
+using test_support::kFdTolerance;
+using test_support::random_motion;
+using test_support::random_point;
 
-constexpr std::array<R, 7> kAllRegions = {R::Face,    R::EdgeAB,  R::EdgeBC, R::EdgeCA,
-                                          R::VertexA, R::VertexB, R::VertexC};
+constexpr std::array<PT, 7> kAllPointTriangleRegions = {
+    PT::Face, PT::EdgeAB, PT::EdgeBC, PT::EdgeCA, PT::VertexA, PT::VertexB, PT::VertexC};
 
 /// (p, a, b, c) stacked as in the library's 12-entry order.
-Vector12d stack(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+Vector12d stack_point_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
+                               const Vector3d& c) {
   Vector12d x;
   x << p, a, b, c;
   return x;
 }
 
-double value_at(const Vector12d& x, R region) {
+double point_triangle_value_at(const Vector12d& x, PT region) {
   return point_triangle_distance_squared(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                          x.segment<3>(9), region);
 }
-Vector12d gradient_at(const Vector12d& x, R region) {
+Vector12d point_triangle_gradient_at(const Vector12d& x, PT region) {
   return point_triangle_distance_squared_gradient(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                                   x.segment<3>(9), region);
 }
-Matrix12d hessian_at(const Vector12d& x, R region) {
+Matrix12d point_triangle_hessian_at(const Vector12d& x, PT region) {
   return point_triangle_distance_squared_hessian(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6),
                                                  x.segment<3>(9), region);
 }
-PointTriangleResult closest_at(const Vector12d& x) {
+PointTriangleResult point_triangle_closest_at(const Vector12d& x) {
   return point_triangle_closest(x.segment<3>(0), x.segment<3>(3), x.segment<3>(6), x.segment<3>(9));
 }
 
-/// Largest |entry| of the difference between analytic derivatives and central differences,
-/// relative to the largest |entry| of the analytic ones.
-struct FdErrors {
-  double gradient = 0.0;
-  double hessian = 0.0;
-};
-
-FdErrors finite_difference_errors(const Vector12d& x, R region, double step) {
-  const Vector12d g = gradient_at(x, region);
-  const Matrix12d H = hessian_at(x, region);
-  Vector12d g_fd;
-  Matrix12d H_fd;
-  for (int i = 0; i < 12; ++i) {
-    Vector12d xp = x, xm = x;
-    xp(i) += step;
-    xm(i) -= step;
-    // The step actually taken: far from the origin x +- h is rounded to the coordinate grid.
-    const double width = xp(i) - xm(i);
-    g_fd(i) = (value_at(xp, region) - value_at(xm, region)) / width;
-    H_fd.col(i) = (gradient_at(xp, region) - gradient_at(xm, region)) / width;
-  }
-  return {(g - g_fd).cwiseAbs().maxCoeff() / g.cwiseAbs().maxCoeff(),
-          (H - H_fd).cwiseAbs().maxCoeff() / H.cwiseAbs().maxCoeff()};
-}
-
-Vector3d random_point(std::mt19937& rng, double half_width) {
-  std::uniform_real_distribution<double> u(-half_width, half_width);
-  return {u(rng), u(rng), u(rng)};
-}
-
-/// Random rigid motion, to check that results do not depend on the frame.
-Eigen::Isometry3d random_motion(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  // Draws in sequence (function arguments have no evaluation order), so runs are reproducible.
-  const double w = g(rng), x = g(rng), y = g(rng), z = g(rng);
-  const Eigen::Quaterniond q = Eigen::Quaterniond(w, x, y, z).normalized();
-  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-  motion.linear() = q.toRotationMatrix();
-  motion.translation() = random_point(rng, 5.0);
-  return motion;
+FdErrors point_triangle_fd_errors(const Vector12d& x, PT region, double step) {
+  return test_support::finite_difference_errors(
+      x, step, [&](const Vector12d& y) { return point_triangle_value_at(y, region); },
+      [&](const Vector12d& y) { return point_triangle_gradient_at(y, region); },
+      [&](const Vector12d& y) { return point_triangle_hessian_at(y, region); });
 }
 
 /// Smallest distance from p to a barycentric grid of n subdivisions of the triangle, and the
@@ -115,30 +90,30 @@ Sampled sample_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
 
 // ---- Exact configurations -------------------------------------------------------------------
 
-struct ExactCase {
+struct PointTriangleCase {
   Vector3d p;
-  R region;
+  PT region;
   double distance_squared;
   Vector3d barycentric;
 };
 
 // Unit right triangle a = 0, b = e_x, c = e_y; one point per region, distances by hand.
-const std::array<ExactCase, 8> kExactCases = {{
-    {{0.2, 0.3, 0.5}, R::Face, 0.25, {0.5, 0.2, 0.3}},
-    {{0.25, 0.25, 0.0}, R::Face, 0.0, {0.5, 0.25, 0.25}},
-    {{0.5, -1.0, 2.0}, R::EdgeAB, 5.0, {0.5, 0.5, 0.0}},      // 1^2 + 2^2
-    {{1.0, 1.0, 1.0}, R::EdgeBC, 1.5, {0.0, 0.5, 0.5}},       // 2 (1/2)^2 + 1
-    {{-2.0, 0.25, -1.0}, R::EdgeCA, 5.0, {0.75, 0.0, 0.25}},  // 2^2 + 1
-    {{-1.0, -2.0, 3.0}, R::VertexA, 14.0, {1.0, 0.0, 0.0}},
-    {{2.0, -1.0, 0.0}, R::VertexB, 2.0, {0.0, 1.0, 0.0}},
-    {{-1.0, 3.0, 0.5}, R::VertexC, 5.25, {0.0, 0.0, 1.0}},
+const std::array<PointTriangleCase, 8> kPointTriangleCases = {{
+    {{0.2, 0.3, 0.5}, PT::Face, 0.25, {0.5, 0.2, 0.3}},
+    {{0.25, 0.25, 0.0}, PT::Face, 0.0, {0.5, 0.25, 0.25}},
+    {{0.5, -1.0, 2.0}, PT::EdgeAB, 5.0, {0.5, 0.5, 0.0}},      // 1^2 + 2^2
+    {{1.0, 1.0, 1.0}, PT::EdgeBC, 1.5, {0.0, 0.5, 0.5}},       // 2 (1/2)^2 + 1
+    {{-2.0, 0.25, -1.0}, PT::EdgeCA, 5.0, {0.75, 0.0, 0.25}},  // 2^2 + 1
+    {{-1.0, -2.0, 3.0}, PT::VertexA, 14.0, {1.0, 0.0, 0.0}},
+    {{2.0, -1.0, 0.0}, PT::VertexB, 2.0, {0.0, 1.0, 0.0}},
+    {{-1.0, 3.0, 0.5}, PT::VertexC, 5.25, {0.0, 0.0, 1.0}},
 }};
 
 TEST(PointTriangleDistance, ExactConfigurationsHitEveryRegion) {
   const Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   std::mt19937 rng(3);
-  std::map<R, int> hits;
-  for (const ExactCase& ex : kExactCases) {
+  std::map<PT, int> hits;
+  for (const PointTriangleCase& ex : kPointTriangleCases) {
     // Identity frame, then three random rigid frames: only rounding may differ (1e-13 relative
     // on distances of O(1)-O(10) with coordinates up to ~10).
     for (int frame = 0; frame < 4; ++frame) {
@@ -158,14 +133,14 @@ TEST(PointTriangleDistance, ExactConfigurationsHitEveryRegion) {
     }
     ++hits[ex.region];
   }
-  for (R region : kAllRegions) EXPECT_GT(hits[region], 0) << to_string(region);
+  for (PT region : kAllPointTriangleRegions) EXPECT_GT(hits[region], 0) << to_string(region);
 }
 
 // ---- Brute force ----------------------------------------------------------------------------
 
 TEST(PointTriangleDistance, AgreesWithBruteForceSampling) {
   std::mt19937 rng(11);
-  std::map<R, int> hits;
+  std::map<PT, int> hits;
   double worst_gap = 0.0;  // largest (sampled min - distance) / covering radius seen
   constexpr int kConfigurations = 400;
   constexpr int kSubdivisions = 60;
@@ -193,7 +168,7 @@ TEST(PointTriangleDistance, AgreesWithBruteForceSampling) {
     EXPECT_NEAR(point_triangle_distance_squared(p, a, b, c, r.region), r.distance_squared,
                 1e-13 * (1.0 + r.distance_squared));
   }
-  for (R region : kAllRegions) EXPECT_GT(hits[region], 0) << to_string(region);
+  for (PT region : kAllPointTriangleRegions) EXPECT_GT(hits[region], 0) << to_string(region);
   std::cout << "[ measured ] brute force: worst (sampled - exact) / covering radius = " << worst_gap
             << " over " << kConfigurations << " configurations\n";
 }
@@ -223,38 +198,34 @@ TEST(PointTriangleDistance, SliverTrianglesAgreeWithBruteForce) {
 /// Random configurations, collected until every region has `per_region` of them. Triangles
 /// with twice-area / longest-edge^2 < 0.1 are skipped so that third derivatives (which set the
 /// finite-difference truncation error) stay O(1); slivers and scales have their own tests.
-std::map<R, std::vector<Vector12d>> configurations_per_region(std::mt19937& rng, int per_region) {
-  std::map<R, std::vector<Vector12d>> out;
+std::map<PT, std::vector<Vector12d>> point_triangle_configurations(std::mt19937& rng,
+                                                                   int per_region) {
+  std::map<PT, std::vector<Vector12d>> out;
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const Vector3d a = random_point(rng, 1.0), b = random_point(rng, 1.0),
                    c = random_point(rng, 1.0), p = random_point(rng, 2.0);
     const double longest =
         std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
     if ((b - a).cross(c - a).norm() < 0.1 * longest) continue;
-    const R region = classify_point_triangle(p, a, b, c);
-    if (static_cast<int>(out[region].size()) < per_region) out[region].push_back(stack(p, a, b, c));
+    const PT region = classify_point_triangle(p, a, b, c);
+    if (static_cast<int>(out[region].size()) < per_region)
+      out[region].push_back(stack_point_triangle(p, a, b, c));
     bool done = true;
-    for (R r : kAllRegions) done = done && static_cast<int>(out[r].size()) >= per_region;
+    for (PT r : kAllPointTriangleRegions)
+      done = done && static_cast<int>(out[r].size()) >= per_region;
     if (done) break;
   }
   return out;
 }
 
-// Central differences with step h on O(1) coordinates: truncation ~ h^2 |f'''| ~ 1e-12 and
-// rounding ~ eps |f| / h ~ 1e-10, both relative to O(1) derivatives. A tolerance of 1e-6
-// relative to the largest entry leaves four orders of margin and still fails for any wrong
-// term, which gives O(1) relative errors.
-constexpr double kStep = 1e-6;
-constexpr double kFdTolerance = 1e-6;
-
 TEST(PointTriangleDistance, DerivativesMatchFiniteDifferencesInEveryRegion) {
   std::mt19937 rng(17);
-  const auto configurations = configurations_per_region(rng, 30);
+  const auto configurations = point_triangle_configurations(rng, 30);
   FdErrors worst;
-  for (R region : kAllRegions) {
+  for (PT region : kAllPointTriangleRegions) {
     ASSERT_EQ(configurations.at(region).size(), 30u) << to_string(region);
     for (const Vector12d& x : configurations.at(region)) {
-      const FdErrors e = finite_difference_errors(x, region, kStep);
+      const FdErrors e = point_triangle_fd_errors(x, region, kFdStep);
       EXPECT_LT(e.gradient, kFdTolerance) << to_string(region);
       EXPECT_LT(e.hessian, kFdTolerance) << to_string(region);
       worst.gradient = std::max(worst.gradient, e.gradient);
@@ -274,13 +245,13 @@ TEST(PointTriangleDistance, DerivativeIdentities) {
   //  - homogeneity of degree 2 (about the origin, given translation invariance):
   //    x . g = 2 f and H x = g.
   std::mt19937 rng(23);
-  const auto configurations = configurations_per_region(rng, 10);
-  for (R region : kAllRegions) {
+  const auto configurations = point_triangle_configurations(rng, 10);
+  for (PT region : kAllPointTriangleRegions) {
     for (const Vector12d& x : configurations.at(region)) {
       SCOPED_TRACE(to_string(region));
-      const double f = value_at(x, region);
-      const Vector12d g = gradient_at(x, region);
-      const Matrix12d H = hessian_at(x, region);
+      const double f = point_triangle_value_at(x, region);
+      const Vector12d g = point_triangle_gradient_at(x, region);
+      const Matrix12d H = point_triangle_hessian_at(x, region);
       const double gs = g.cwiseAbs().maxCoeff(), hs = H.cwiseAbs().maxCoeff();
       // The one-call form is the same computation, so bitwise equal.
       const ValueGradientHessian<12> all = point_triangle_distance_squared_derivatives(
@@ -313,23 +284,24 @@ TEST(PointTriangleDistance, DerivativesAcrossScalesAndFarFromOrigin) {
   // ~4e-10), still inside the 1e-6 tolerance. The FD quotient divides by the step actually
   // taken after rounding x +- h.
   std::mt19937 rng(29);
-  const auto configurations = configurations_per_region(rng, 4);
+  const auto configurations = point_triangle_configurations(rng, 4);
   FdErrors worst;
   for (double scale : {1e-3, 1.0, 1e3}) {
     for (double offset : {0.0, 1e3}) {
-      for (R region : kAllRegions) {
+      for (PT region : kAllPointTriangleRegions) {
         for (const Vector12d& x0 : configurations.at(region)) {
           Vector12d x = scale * x0;
           for (int k = 0; k < 4; ++k) x.segment<3>(3 * k) += Vector3d::Constant(offset * scale);
-          ASSERT_EQ(closest_at(x).region, region) << "scale " << scale << " offset " << offset;
-          const FdErrors e = finite_difference_errors(x, region, kStep * scale);
+          ASSERT_EQ(point_triangle_closest_at(x).region, region)
+              << "scale " << scale << " offset " << offset;
+          const FdErrors e = point_triangle_fd_errors(x, region, kFdStep * scale);
           EXPECT_LT(e.gradient, kFdTolerance) << to_string(region) << " scale " << scale;
           EXPECT_LT(e.hessian, kFdTolerance) << to_string(region) << " scale " << scale;
           worst.gradient = std::max(worst.gradient, e.gradient);
           worst.hessian = std::max(worst.hessian, e.hessian);
           // Homogeneity: g scales like L, H is scale-free (rounding only).
-          const Vector12d g1 = gradient_at(scale * x0, region);
-          EXPECT_LE((g1 - scale * gradient_at(x0, region)).cwiseAbs().maxCoeff(),
+          const Vector12d g1 = point_triangle_gradient_at(scale * x0, region);
+          EXPECT_LE((g1 - scale * point_triangle_gradient_at(x0, region)).cwiseAbs().maxCoeff(),
                     1e-12 * g1.cwiseAbs().maxCoeff());
         }
       }
@@ -362,25 +334,25 @@ TEST(PointTriangleDistance, FaceDerivativesOfSliversStayFiniteAndAccurate) {
       const Vector3d a = T * Vector3d(0, 0, 0), b = T * Vector3d(1, 0, 0),
                      c = T * Vector3d(0.4, thinness, 0);
       const Vector3d p = T * Vector3d(0.5, 0.3 * thinness, 0.7);
-      const Vector12d x = stack(p, a, b, c);
-      const Vector12d g = gradient_at(x, R::Face);
-      const Matrix12d H = hessian_at(x, R::Face);
+      const Vector12d x = stack_point_triangle(p, a, b, c);
+      const Vector12d g = point_triangle_gradient_at(x, PT::Face);
+      const Matrix12d H = point_triangle_hessian_at(x, PT::Face);
       EXPECT_TRUE(H.allFinite() && g.allFinite());
       EXPECT_LE((H - H.transpose()).cwiseAbs().maxCoeff(), 1e-14 * H.cwiseAbs().maxCoeff());
       if (thinness < 1e-6) continue;  // the sliver's normal is then only known to ~eps/thinness
       // (At thinness 1e-9 rounding can move p's projection off the sliver, so no region check.)
-      ASSERT_EQ(classify_point_triangle(p, a, b, c), R::Face);
+      ASSERT_EQ(classify_point_triangle(p, a, b, c), PT::Face);
       Vector12d centred = x;
       const Vector3d centroid = (p + a + b + c) / 4.0;
       for (int k = 0; k < 4; ++k) centred.segment<3>(3 * k) -= centroid;
       EXPECT_LE((H * centred - g).cwiseAbs().maxCoeff(),
                 1e-12 * H.cwiseAbs().maxCoeff() * centred.cwiseAbs().maxCoeff());
-      const FdErrors e_hessian = finite_difference_errors(x, R::Face, 1e-4 * thinness);
+      const FdErrors e_hessian = point_triangle_fd_errors(x, PT::Face, 1e-4 * thinness);
       EXPECT_LT(e_hessian.hessian, kFdTolerance);
       worst.hessian = std::max(worst.hessian, e_hessian.hessian);
       if (thinness >= 1e-2) {
         const FdErrors e_gradient =
-            finite_difference_errors(x, R::Face, 1e-4 * thinness * std::sqrt(thinness));
+            point_triangle_fd_errors(x, PT::Face, 1e-4 * thinness * std::sqrt(thinness));
         EXPECT_LT(e_gradient.gradient, kFdTolerance);
         worst.gradient = std::max(worst.gradient, e_gradient.gradient);
       }
@@ -391,16 +363,6 @@ TEST(PointTriangleDistance, FaceDerivativesOfSliversStayFiniteAndAccurate) {
 }
 
 // ---- Degenerate input ------------------------------------------------------------------------
-
-void expect_invalid_argument_containing(const std::function<void()>& call,
-                                        const std::string& fragment) {
-  try {
-    call();
-    ADD_FAILURE() << "no exception; expected one mentioning \"" << fragment << "\"";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
-}
 
 TEST(PointTriangleDistance, DegenerateInputThrowsNamingTheProblem) {
   const Vector3d p(0.1, 0.2, 0.3), a(0.1, 0.2, 0.3), b(0.7, 1.1, 0.4);
@@ -417,7 +379,7 @@ TEST(PointTriangleDistance, DegenerateInputThrowsNamingTheProblem) {
       "zero area");
   EXPECT_NO_THROW(classify_point_triangle(p, o, Vector3d(1, 0, 0), Vector3d(0.5, 1e-11, 0)));
   // The region-held functions validate too.
-  for (R region : kAllRegions) {
+  for (PT region : kAllPointTriangleRegions) {
     expect_invalid_argument_containing(
         [&] { point_triangle_distance_squared_gradient(p, a, b, collinear, region); }, "zero area");
     expect_invalid_argument_containing(

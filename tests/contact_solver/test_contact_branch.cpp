@@ -58,7 +58,6 @@ namespace {
 
 using test_support::disc;
 using test_support::GrownDisc;
-constexpr double kH = GrownDisc::kH;
 
 /// The grown disc's fold pattern has crept round against the mesh (natural growth steps), so
 /// its mirrors are not the mesh's: the cone entered by continuation instead, whose folds lie
@@ -75,7 +74,7 @@ Eigen::VectorXd pushed_by_bump(const GrownDisc& d, const Eigen::VectorXd& x) {
   Eigen::VectorXd pushed = x;
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
     const double r2 = x(3 * v) * x(3 * v) + x(3 * v + 1) * x(3 * v + 1);
-    pushed(3 * v + 2) += 0.2 * kH * std::exp(-4.0 * r2);
+    pushed(3 * v + 2) += 0.2 * GrownDisc::kH * std::exp(-4.0 * r2);
   }
   for (const Eigen::Index i : d.pinned) pushed(i) = x(i);
   return pushed;
@@ -172,7 +171,7 @@ TEST(ContactBranch, AStartTheCorrectorCannotConvergeIsRelaxedAndTheTraceGoesOn) 
   EXPECT_LE(g.lpNorm<Eigen::Infinity>(), o.arclength.gradient_tolerance);
   const double e0 = d.model.evaluate(x, GrownDisc::kStart, nullptr, nullptr);
   EXPECT_NEAR(e, e0, 1e-8 * e0);
-  EXPECT_LT((first.sample.x - x).cwiseAbs().maxCoeff(), 0.2 * 0.2 * kH);
+  EXPECT_LT((first.sample.x - x).cwiseAbs().maxCoeff(), 0.2 * 0.2 * GrownDisc::kH);
 }
 
 // The same in the mirror subspace: the start, pushed by an axisymmetric bump that keeps both
@@ -355,11 +354,12 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   EXPECT_GT(samples.back().sample.parameter, 6.5);
   // Penetration bound: the largest penalty force over k. The pairs carry forces of order
   // Y h^3 / R... per pair; with k = 10 Y l^2 / h that is far below h / 10. Assert h / 20.
-  const double tol = kH / 20;
+  const double tol = GrownDisc::kH / 20;
   int touching = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    const ContactCandidates close = near_contact_pairs(
-        d.proxy, states[i], kH - tol, o.exclusion_radius, NearPairSelection{true, false});
+    const ContactCandidates close =
+        near_contact_pairs(d.proxy, states[i], GrownDisc::kH - tol, o.exclusion_radius,
+                           NearPairSelection{true, false});
     EXPECT_TRUE(close.empty()) << "sample " << i << " at phi_e = " << samples[i].sample.parameter
                                << " has " << close.vertex_triangle.rows() << " + "
                                << close.edge_edge.rows() << " pairs closer than h - h/20";
@@ -367,8 +367,8 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
       ++touching;
       EXPECT_GT(samples[i].forces.maxCoeff(), 0.0);
       EXPECT_GT(samples[i].penalty_energy, 0.0);
-      EXPECT_LT(samples[i].min_distance, kH);
-      EXPECT_GT(samples[i].min_distance, kH - tol);
+      EXPECT_LT(samples[i].min_distance, GrownDisc::kH);
+      EXPECT_GT(samples[i].min_distance, GrownDisc::kH - tol);
     }
   }
   EXPECT_GT(touching, 2) << "the folds did not touch below phi_e = 6.5";
@@ -380,7 +380,7 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (samples[i].active_pairs == 0) continue;
     ObjectiveAtParameter energy(d.model, samples[i].sample.parameter);
-    ContactGapConstraints gaps(d.proxy, samples[i].pairs, kH, d.model.dimension());
+    ContactGapConstraints gaps(d.proxy, samples[i].pairs, GrownDisc::kH, d.model.dimension());
     const ReducedInertia reduced =
         contact_constrained_inertia(energy, gaps, states[i], samples[i].forces, 0.0, d.pinned);
     EXPECT_EQ(reduced.negative, samples[i].sample.negative_eigenvalues)
@@ -399,10 +399,10 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   ASSERT_LT(last, samples.size()) << "no stable sample in contact";
   const double phi = samples[last].sample.parameter;
   ContactSolveOptions ip = d.ipopt_options();
-  ip.violation_tolerance = 1e-3 * kH;
+  ip.violation_tolerance = 1e-3 * GrownDisc::kH;
   ip.minimizer.tolerance = 1e-10;
-  ip.minimizer.constraint_violation_tolerance = 1e-9 * kH;
-  ip.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * kH;
+  ip.minimizer.constraint_violation_tolerance = 1e-9 * GrownDisc::kH;
+  ip.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * GrownDisc::kH;
   ip.newton.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
   const ContactSolveResult constrained =
       solve_contact_equilibrium(d.model, phi, d.proxy, states[last], d.pinned, ip);
@@ -411,7 +411,8 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   const ContactCandidates pairs = samples[last].pairs;
   std::vector<double> error;
   for (const double factor : {1.0, 10.0, 100.0}) {
-    ContactPenalty penalty(d.proxy, pairs, kH, factor * o.stiffness, d.model.dimension());
+    ContactPenalty penalty(d.proxy, pairs, GrownDisc::kH, factor * o.stiffness,
+                           d.model.dimension());
     PenalizedEnergy family(d.model, penalty);
     ObjectiveAtParameter energy(family, phi);
     NewtonOptions n;
@@ -420,7 +421,7 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
     ASSERT_TRUE(r.converged()) << r.message;
     error.push_back((r.x - constrained.x).cwiseAbs().maxCoeff());
   }
-  EXPECT_LT(error[0], 0.05 * kH);
+  EXPECT_LT(error[0], 0.05 * GrownDisc::kH);
   EXPECT_LT(error[1], error[0] / 5) << error[0] << " -> " << error[1];
   EXPECT_LT(error[2], error[1] / 5) << error[1] << " -> " << error[2];
   EXPECT_FALSE(samples.front().active_pairs > 0) << "already touching at the start";
@@ -449,8 +450,8 @@ TEST(ContactBranch, SetsOfEveryNearTriangleHoldTheClosePairsAndDoNotChangeTheEne
   ASSERT_GT(samples.size(), 5u);
   int touching = 0, several_triangles = 0;
   for (const ContactBranchSample& s : samples) {
-    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH, o.exclusion_radius,
-                                                       NearPairSelection{false, false});
+    const ContactCandidates close = near_contact_pairs(
+        d.proxy, s.sample.x, GrownDisc::kH, o.exclusion_radius, NearPairSelection{false, false});
     for (Eigen::Index i = 0; i < close.vertex_triangle.rows(); ++i) {
       bool held = false;
       for (Eigen::Index j = 0; j < s.pairs.vertex_triangle.rows() && !held; ++j)
@@ -467,9 +468,9 @@ TEST(ContactBranch, SetsOfEveryNearTriangleHoldTheClosePairsAndDoNotChangeTheEne
     if (static_cast<Eigen::Index>(vertices.size()) < s.pairs.vertex_triangle.rows())
       ++several_triangles;
     const ContactCandidates rebuilt = near_contact_pairs(
-        d.proxy, s.sample.x, kH + o.candidate_margin, o.exclusion_radius, o.selection);
-    ContactPenalty own(d.proxy, s.pairs, kH, o.stiffness, d.model.dimension());
-    ContactPenalty fresh(d.proxy, rebuilt, kH, o.stiffness, d.model.dimension());
+        d.proxy, s.sample.x, GrownDisc::kH + o.candidate_margin, o.exclusion_radius, o.selection);
+    ContactPenalty own(d.proxy, s.pairs, GrownDisc::kH, o.stiffness, d.model.dimension());
+    ContactPenalty fresh(d.proxy, rebuilt, GrownDisc::kH, o.stiffness, d.model.dimension());
     Eigen::VectorXd g_own, g_fresh;
     const double p_own = own.evaluate(s.sample.x, &g_own, nullptr);
     const double p_fresh = fresh.evaluate(s.sample.x, &g_fresh, nullptr);
@@ -515,7 +516,7 @@ TEST(ContactBranch, InTheMirrorSubspaceTheSymmetricBranchKeepsItsMirrorsAndItsSt
   // The start, symmetrised and corrected, handed back where it was: it moves by the order of
   // its own asymmetry (the full-space cone trace keeps the mirrors only to its tolerance).
   const double start_asymmetry = subspace->asymmetry(subspace->aligning_motion(x).apply(x));
-  EXPECT_LT(start_asymmetry, 1e-3 * kH);  // measured 2.3e-5 m
+  EXPECT_LT(start_asymmetry, 1e-3 * GrownDisc::kH);  // measured 2.3e-5 m
   EXPECT_LT((reduced.samples.front().sample.x - x).cwiseAbs().maxCoeff(), 1.5 * start_asymmetry);
   int touching = 0;
   for (const ContactBranchSample& s : reduced.samples) {
@@ -582,10 +583,10 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
   // Ipopt with hard constraints on vertex-triangle and edge-edge pairs checks the skewed state.
   ContactSolveOptions ipopt = d.ipopt_options();
   ipopt.edge_edge_pairs = true;
-  ipopt.violation_tolerance = 1e-2 * kH;
+  ipopt.violation_tolerance = 1e-2 * GrownDisc::kH;
   ipopt.minimizer.tolerance = 1e-8;
-  ipopt.minimizer.constraint_violation_tolerance = 1e-6 * kH;
-  ipopt.minimizer.complementarity_tolerance = 1e-8 * d.model.natural_force_scale() * kH;
+  ipopt.minimizer.constraint_violation_tolerance = 1e-6 * GrownDisc::kH;
+  ipopt.minimizer.complementarity_tolerance = 1e-8 * d.model.natural_force_scale() * GrownDisc::kH;
   ipopt.newton.gradient_tolerance = 1e-6 * d.model.natural_force_scale();
   o.verify_with_ipopt = ipopt;
   std::vector<std::pair<EconeBranch, ContactBranchSample>> samples;
@@ -609,7 +610,7 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
   // below the symmetric one: 2.681 against 2.703 J at phi_e = 6.6.
   ASSERT_TRUE(r.ipopt_checked);
   EXPECT_TRUE(r.ipopt_converged) << r.ipopt_message;
-  EXPECT_GE(r.ipopt_min_distance, kH - 1e-2 * kH);
+  EXPECT_GE(r.ipopt_min_distance, GrownDisc::kH - 1e-2 * GrownDisc::kH);
   EXPECT_GT(r.ipopt_energy, r.penalty_elastic_energy);
   EXPECT_LT(r.ipopt_energy, r.symmetric_top_energy);
   // The skewed branch is followed from the relaxed state: it starts stable and in contact.
@@ -619,12 +620,13 @@ TEST(EconeBranches, SymmetricBranchLosesStabilityAndALowerSkewedStateIsFollowed)
     // nearest triangle or not, closer than h - h/20. Edges crossing between proxy vertices are
     // not penalised; where the skewed cone's wings slide across each other they come to
     // 0.921 h on this coarse proxy (spacing 2.4 h): bounded at 0.9 h here (docs/contact.md).
-    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH - kH / 20,
-                                                       o.contact.exclusion_radius,
-                                                       NearPairSelection{false, false});
+    const ContactCandidates close =
+        near_contact_pairs(d.proxy, s.sample.x, GrownDisc::kH - GrownDisc::kH / 20,
+                           o.contact.exclusion_radius, NearPairSelection{false, false});
     EXPECT_TRUE(close.empty()) << to_string(branch) << " at phi_e = " << s.sample.parameter;
-    const ContactCandidates crossing_edges = near_contact_pairs(
-        d.proxy, s.sample.x, 0.9 * kH, o.contact.exclusion_radius, NearPairSelection{true, false});
+    const ContactCandidates crossing_edges =
+        near_contact_pairs(d.proxy, s.sample.x, 0.9 * GrownDisc::kH, o.contact.exclusion_radius,
+                           NearPairSelection{true, false});
     EXPECT_TRUE(crossing_edges.empty()) << to_string(branch) << " at phi_e = " << s.sample.parameter;
     if (branch != EconeBranch::Skewed) continue;
     if (skewed++ == 0) {
@@ -684,7 +686,7 @@ TEST(EconeBranches, ASearchModeOddUnderAMirrorIsPushedOneWayAndTheOtherWayRelaxe
       mirrors.group(), without_rigid_velocity(frame.apply(top), frame.rotate(mode)));
   EXPECT_FALSE(c.trivial());
   EXPECT_GT(c.weight, 0.99);  // measured 0.9959
-  Eigen::VectorXd y = top - (o.push * kH / mode.cwiseAbs().maxCoeff()) * mode;
+  Eigen::VectorXd y = top - (o.push * GrownDisc::kH / mode.cwiseAbs().maxCoeff()) * mode;
   const ContactRelaxation relaxed =
       relax_with_contact(d.model, phi, d.proxy, y, pins, o.contact, o.relaxation);
   ASSERT_TRUE(relaxed.relaxed) << relaxed.message;
@@ -716,14 +718,14 @@ TEST(ContactGrowth, StepsThroughContactAreStableAndKeepTheThickness) {
   int touching = 0;
   for (const ContactGrowthPoint& p : points) {
     const ContactBranchSample& s = p.sample;
-    const ContactCandidates close = near_contact_pairs(d.proxy, s.sample.x, kH - kH / 20,
-                                                       o.contact.exclusion_radius,
-                                                       NearPairSelection{false, false});
+    const ContactCandidates close =
+        near_contact_pairs(d.proxy, s.sample.x, GrownDisc::kH - GrownDisc::kH / 20,
+                           o.contact.exclusion_radius, NearPairSelection{false, false});
     EXPECT_TRUE(close.empty()) << "at phi_e = " << s.sample.parameter;
     if (s.active_pairs == 0) continue;
     ++touching;
     ObjectiveAtParameter energy(d.model, s.sample.parameter);
-    ContactGapConstraints gaps(d.proxy, s.pairs, kH, d.model.dimension());
+    ContactGapConstraints gaps(d.proxy, s.pairs, GrownDisc::kH, d.model.dimension());
     const ReducedInertia reduced =
         contact_constrained_inertia(energy, gaps, s.sample.x, s.forces, 0.0, d.pinned);
     EXPECT_EQ(reduced.negative, 0) << "at phi_e = " << s.sample.parameter;
@@ -779,7 +781,8 @@ TEST(ContactGrowth, APathSplitAtAnyStepGivesTheSameStates) {
     const BranchSample& a = whole[k].sample.sample;
     const BranchSample& b = split[k].sample.sample;
     EXPECT_NEAR(a.parameter, b.parameter, 1e-12);  // 5 + 6 x 0.2 against 6.2
-    EXPECT_LE((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-10 * kH) << "at phi_e = " << a.parameter;
+    EXPECT_LE((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-10 * GrownDisc::kH)
+        << "at phi_e = " << a.parameter;
     EXPECT_EQ(whole[k].sample.active_pairs, split[k].sample.active_pairs);
     touching += whole[k].sample.active_pairs > 0;
   }
@@ -834,7 +837,7 @@ TEST(ContactGrowth, ThePredictorMovesTheStartOfEachStepNotItsMinimum) {
   }
   // The states differ along the nearly free turn of the fold pattern, which the Newton
   // decrement test leaves unconverged: 1.4e-3 h at most (measured; energies to 7e-13).
-  EXPECT_LE(largest, 1e-2 * kH);
+  EXPECT_LE(largest, 1e-2 * GrownDisc::kH);
   EXPECT_GT(touching, 0) << "the path never reached contact";
 
   // Each point's work adds up to the path's counts: its failed step sizes, its discarded
@@ -914,7 +917,7 @@ TEST(ContactBranch, BadOptionsAreRejectedByName) {
   o.contact_distance = -1.0;
   expect_message(o, "contact_distance");
   o = d.options();
-  o.violation_tolerance = kH;
+  o.violation_tolerance = GrownDisc::kH;
   expect_message(o, "violation_tolerance");
   o = d.options();
   o.steps_per_segment = 0;

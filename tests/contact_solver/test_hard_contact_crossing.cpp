@@ -27,16 +27,16 @@ namespace {
 
 using test_support::disc;
 using test_support::GrownDisc;
-constexpr double kH = GrownDisc::kH;
 
 HardContactCrossingOptions hard_options(const GrownDisc& d) {
   HardContactCrossingOptions o;
   o.solve = d.ipopt_options();
   o.solve.edge_edge_pairs = true;
-  o.solve.violation_tolerance = 1e-3 * kH;
+  o.solve.violation_tolerance = 1e-3 * GrownDisc::kH;
   o.solve.minimizer.tolerance = 1e-9;
-  o.solve.minimizer.constraint_violation_tolerance = 1e-9 * kH;
-  o.solve.minimizer.complementarity_tolerance = 1e-10 * d.model.natural_force_scale() * kH;
+  o.solve.minimizer.constraint_violation_tolerance = 1e-9 * GrownDisc::kH;
+  o.solve.minimizer.complementarity_tolerance =
+      1e-10 * d.model.natural_force_scale() * GrownDisc::kH;
   o.solve.newton.gradient_tolerance = 1e-9 * d.model.natural_force_scale();
   o.zone_link_distance = 0.1;
   o.penalty_stiffness = d.options().stiffness;  // warm start from the penalty's forces
@@ -91,11 +91,11 @@ TEST(HardContactCrossing, SlopeIsTheDerivativeOfTheResolvedEnergyAlongTheConstra
     // Hard constraints: no pair of the sheet (edge-edge pairs included, nearest triangle or
     // not) closer than h less the solve's violation tolerance.
     const ContactCandidates close =
-        near_contact_pairs(d.proxy, h.x, kH - o.solve.violation_tolerance, o.solve.exclusion_radius,
-                           NearPairSelection{true, false});
+        near_contact_pairs(d.proxy, h.x, GrownDisc::kH - o.solve.violation_tolerance,
+                           o.solve.exclusion_radius, NearPairSelection{true, false});
     EXPECT_TRUE(close.empty()) << close.vertex_triangle.rows() << " + " << close.edge_edge.rows()
                                << " pairs closer than h at phi_e = " << h.parameter;
-    EXPECT_GE(h.min_distance, kH - o.solve.violation_tolerance);
+    EXPECT_GE(h.min_distance, GrownDisc::kH - o.solve.violation_tolerance);
   }
   // Envelope theorem: dE*/dphi = partial E / partial phi at x*. The difference quotient of the
   // two re-solved energies equals the mean of their slopes up to delta^2 E''' / 12 ~ 1e-7 E

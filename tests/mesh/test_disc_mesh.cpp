@@ -18,7 +18,8 @@
 namespace growshell {
 namespace {
 
-using namespace test_support;
+using test_support::count_elements;
+using test_support::mesh_error_message;
 
 int ring_start(int k) { return k == 0 ? 0 : 1 + 3 * k * (k - 1); }
 

@@ -24,7 +24,7 @@
 namespace growshell {
 namespace {
 
-using namespace test_support;
+using test_support::mesh_error_message;
 
 double signed_area(const TriangleMesh& m, int f) {
   const Eigen::Vector2d a = m.vertices.row(m.faces(f, 0)).head<2>();

@@ -23,9 +23,13 @@
 namespace growshell {
 namespace {
 
-using namespace test_support;
+using test_support::count_elements;
+using test_support::element_stats;
+using test_support::ElementStats;
+using test_support::expect_cone_symmetry_group;
+using test_support::interior_valence_histogram;
 
-GmshDiscMeshOptions cone_options(double size_floor) {
+GmshDiscMeshOptions gmsh_cone_options(double size_floor) {
   GmshDiscMeshOptions o;
   o.size_slope = 0.25;
   o.size_floor = size_floor;
@@ -74,7 +78,7 @@ TEST(GmshDiscMesh, GradedDiscsForTheConeSettings) {
   };
   for (const Expected& e : {Expected{0.01, 498}, Expected{0.005, 588}, Expected{0.0005, 894}}) {
     SCOPED_TRACE("s_min = " + std::to_string(e.s_min));
-    const GmshDiscMeshOptions o = cone_options(e.s_min);
+    const GmshDiscMeshOptions o = gmsh_cone_options(e.s_min);
     const TriangleMesh sheet = make_gmsh_disc_sheet(o);
     const TriangleMesh mesh = make_gmsh_disc_mesh(o);
     expect_valid(o, sheet, mesh);
@@ -104,7 +108,7 @@ TEST(GmshDiscMesh, GradedDiscsForTheConeSettings) {
 }
 
 TEST(GmshDiscMesh, AnnulusHasBothCirclesAsBoundary) {
-  GmshDiscMeshOptions o = cone_options(0.01);
+  GmshDiscMeshOptions o = gmsh_cone_options(0.01);
   o.inner_radius = 0.2;
   o.algorithm = GmshAlgorithm::Delaunay;
   const TriangleMesh sheet = make_gmsh_disc_sheet(o);
@@ -138,7 +142,7 @@ TEST(GmshDiscMesh, AnnulusHasBothCirclesAsBoundary) {
 TEST(GmshDiscMesh, DihedralSymmetryReflectsOneSectorIntoTheDiscAndRing) {
   std::vector<GmshDiscMeshOptions> cases;
   for (const double inner : {0.0, 0.2}) {
-    GmshDiscMeshOptions o = cone_options(0.01);
+    GmshDiscMeshOptions o = gmsh_cone_options(0.01);
     o.size_slope = 0.1;
     o.inner_radius = inner;
     o.dihedral_symmetry = true;
@@ -185,7 +189,7 @@ TEST(GmshDiscMesh, DihedralSymmetryReflectsOneSectorIntoTheDiscAndRing) {
 }
 
 TEST(GmshDiscMesh, IsDeterministic) {
-  const GmshDiscMeshOptions o = cone_options(0.005);
+  const GmshDiscMeshOptions o = gmsh_cone_options(0.005);
   const TriangleMesh a = make_gmsh_disc_mesh(o);
   const TriangleMesh b = make_gmsh_disc_mesh(o);
   EXPECT_EQ(a.vertices, b.vertices);
@@ -198,7 +202,7 @@ TEST(GmshDiscMesh, MshFilesWrittenByGmshReadBackToTheSheet) {
   std::filesystem::create_directories(dir);
   for (const double version : {4.1, 2.2}) {
     SCOPED_TRACE("format " + std::to_string(version));
-    GmshDiscMeshOptions o = cone_options(0.05);
+    GmshDiscMeshOptions o = gmsh_cone_options(0.05);
     o.msh_file = (dir / ("disc_" + std::to_string(version) + ".msh")).string();
     o.msh_file_version = version;
     const TriangleMesh sheet = make_gmsh_disc_sheet(o);

@@ -13,7 +13,7 @@
 namespace growshell {
 namespace {
 
-using namespace test_support;
+using test_support::mesh_error_message;
 
 Eigen::MatrixX3i faces_of(std::initializer_list<std::array<int, 3>> list) {
   Eigen::MatrixX3i faces(static_cast<Eigen::Index>(list.size()), 3);

@@ -9,6 +9,7 @@
 
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/mesh_error.hpp"
+#include "tests/support/expect_contains.hpp"
 
 namespace growshell {
 namespace {
@@ -21,9 +22,6 @@ std::string validation_message(const TriangleMesh& mesh) {
   }
   return "<no MeshError thrown>";
 }
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 
 // Centre vertex 0 at the origin and n rim vertices 1..n on the unit circle, CCW fan.
 TriangleMesh fan(int n) {

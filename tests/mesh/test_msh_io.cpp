@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "libshell/mesh/mesh_error.hpp"
+#include "tests/support/expect_contains.hpp"
 
 namespace growshell {
 namespace {
@@ -100,9 +101,6 @@ std::string error_of(const std::string& text) {
   }
   return "<no MeshError thrown>";
 }
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 
 void expect_square(const TriangleMesh& m) {
   // Used nodes in increasing tag: 3, 4, 11, 20 -> vertices 0..3.

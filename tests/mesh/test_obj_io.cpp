@@ -12,6 +12,7 @@
 
 #include "libshell/mesh/disc_mesh.hpp"
 #include "libshell/mesh/mesh_error.hpp"
+#include "tests/support/expect_contains.hpp"
 
 namespace growshell {
 namespace {
@@ -34,9 +35,6 @@ std::string read_error(const std::string& path) {
   }
   return "<no MeshError thrown>";
 }
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "message: " << (text)
 
 TEST(ObjIo, RoundTripIsBitExact) {
   TriangleMesh mesh = make_disc_mesh({.radius = 1.0 / 3.0,

@@ -21,9 +21,13 @@
 namespace growshell {
 namespace {
 
-using namespace test_support;
+using test_support::count_elements;
+using test_support::element_stats;
+using test_support::ElementStats;
+using test_support::expect_cone_symmetry_group;
+using test_support::interior_valence_histogram;
 
-RingDiscMeshOptions cone_options(double size_floor) {
+RingDiscMeshOptions ring_cone_options(double size_floor) {
   RingDiscMeshOptions o;
   o.radius = 1.0;
   o.size_slope = 0.25;
@@ -34,7 +38,7 @@ RingDiscMeshOptions cone_options(double size_floor) {
 TEST(RingDiscMesh, RingsFollowTheSizeFieldAndEndAtTheRim) {
   for (const double s_min : {0.01, 0.005, 0.0005}) {
     SCOPED_TRACE("s_min = " + std::to_string(s_min));
-    const RingDiscMeshOptions o = cone_options(s_min);
+    const RingDiscMeshOptions o = ring_cone_options(s_min);
     const RingDiscRings rings = ring_disc_rings(o);
     const RadialSize size{o.size_slope, o.size_floor, o.size_max};
     const std::size_t M = rings.radii.size() - 1;
@@ -70,13 +74,13 @@ TEST(RingDiscMesh, RingsFollowTheSizeFieldAndEndAtTheRim) {
 }
 
 TEST(RingDiscMesh, MirrorsAndQuarterTurnMapVerticesAndFacesExactly) {
-  std::vector<RingDiscMeshOptions> cases = {cone_options(0.01), cone_options(0.0005)};
+  std::vector<RingDiscMeshOptions> cases = {ring_cone_options(0.01), ring_cone_options(0.0005)};
   for (const int valence : {4, 12}) {
-    RingDiscMeshOptions o = cone_options(0.02);
+    RingDiscMeshOptions o = ring_cone_options(0.02);
     o.center_valence = valence;
     cases.push_back(o);
   }
-  RingDiscMeshOptions capped = cone_options(0.01);
+  RingDiscMeshOptions capped = ring_cone_options(0.01);
   capped.size_max = 0.08;  // uniform outer region: the counts double again beyond r = 0.32
   cases.push_back(capped);
   for (std::size_t k = 0; k < cases.size(); ++k) {
@@ -90,7 +94,7 @@ TEST(RingDiscMesh, MirrorsAndQuarterTurnMapVerticesAndFacesExactly) {
 }
 
 TEST(RingDiscMesh, IsAControlMeshWithTheRimOnTheCircle) {
-  const RingDiscMeshOptions o = cone_options(0.005);
+  const RingDiscMeshOptions o = ring_cone_options(0.005);
   const TriangleMesh sheet = make_ring_disc_sheet(o);
   const TriangleMesh mesh = make_ring_disc_mesh(o);
   const RingDiscRings rings = ring_disc_rings(o);
@@ -136,7 +140,7 @@ TEST(RingDiscMesh, AnglesSizesAndValencesForTheConeSettings) {
   for (const Expected& e : {Expected{0.01, 17, 489}, Expected{0.005, 20, 585},
                             Expected{0.0005, 29, 873}}) {
     SCOPED_TRACE("s_min = " + std::to_string(e.s_min));
-    const RingDiscMeshOptions o = cone_options(e.s_min);
+    const RingDiscMeshOptions o = ring_cone_options(e.s_min);
     const TriangleMesh sheet = make_ring_disc_sheet(o);
     const TriangleMesh mesh = make_ring_disc_mesh(o);
     const RingDiscRings rings = ring_disc_rings(o);
@@ -161,7 +165,7 @@ TEST(RingDiscMesh, AnglesSizesAndValencesForTheConeSettings) {
 // in the log-polar region), ring 0 and ring M lie on the two circles, and the mesh has the
 // square's symmetry exactly with no fixed vertex.
 TEST(RingDiscMesh, AnnulusKeepsOneCountBetweenItsTwoRimCircles) {
-  RingDiscMeshOptions o = cone_options(0.02);
+  RingDiscMeshOptions o = ring_cone_options(0.02);
   o.size_slope = 0.1;
   o.inner_radius = 0.5;
   const RingDiscRings rings = ring_disc_rings(o);

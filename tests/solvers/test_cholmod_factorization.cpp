@@ -9,64 +9,25 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/random_spd_grid.hpp"
+#include "tests/support/random_vector.hpp"
+#include "tests/support/scientific.hpp"
 #include "tests/support/sparse_upper.hpp"
 
 namespace growshell {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-// Weighted 2-D grid graph (side x side nodes, 4-neighbour edges plus one diagonal) with
-// random-sign edge weights, made strictly diagonally dominant with a random positive excess:
-// symmetric positive definite, and mesh-like so that the orderings matter.
-SpMat random_spd_full(int side, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> weight(-1.0, 1.0);
-  std::uniform_real_distribution<double> excess(0.1, 1.0);
-  const int n = side * side;
-  std::vector<Eigen::Triplet<double>> t;
-  Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(n);
-  auto add_edge = [&](int a, int b) {
-    const double w = weight(rng);
-    t.emplace_back(a, b, w);
-    t.emplace_back(b, a, w);
-    row_sum[a] += std::abs(w);
-    row_sum[b] += std::abs(w);
-  };
-  for (int i = 0; i < side; ++i) {
-    for (int j = 0; j < side; ++j) {
-      const int v = i * side + j;
-      if (j + 1 < side) add_edge(v, v + 1);
-      if (i + 1 < side) add_edge(v, v + side);
-      if (i + 1 < side && j + 1 < side) add_edge(v, v + side + 1);
-    }
-  }
-  for (int v = 0; v < n; ++v) t.emplace_back(v, v, row_sum[v] + excess(rng));
-  SpMat a(n, n);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
+using test_support::random_spd_full;
+using test_support::random_vector;
+using test_support::scientific;
 
 using test_support::upper_of;
-
-Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
 
 Eigen::VectorXd reference_solve(const SpMat& full, const Eigen::VectorXd& b) {
   Eigen::SimplicialLDLT<SpMat> ldlt(full);
   EXPECT_EQ(ldlt.info(), Eigen::Success);
   return ldlt.solve(b);
-}
-
-std::string scientific(double v) {
-  std::ostringstream s;
-  s << std::scientific << v;
-  return s.str();
 }
 
 double relative_error(const Eigen::VectorXd& x, const Eigen::VectorXd& ref) {

@@ -20,9 +20,9 @@ namespace growshell {
 namespace {
 
 /// E = x^T A x / 2 - b^T x with a tridiagonal A whose stiffness spans a factor of 400.
-class Quadratic : public SparseObjective {
+class GradedStiffnessQuadratic : public SparseObjective {
  public:
-  explicit Quadratic(Eigen::Index n) : A_(n, n), b_(n) {
+  explicit GradedStiffnessQuadratic(Eigen::Index n) : A_(n, n), b_(n) {
     std::vector<Eigen::Triplet<double>> t;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double k = 1.0 + 399.0 * i / (n - 1);
@@ -62,7 +62,7 @@ class Quadratic : public SparseObjective {
 };
 
 TEST(DampedDynamics, BothIntegratorsReachTheMinimumOfAnIllConditionedQuadratic) {
-  Quadratic q(40);
+  GradedStiffnessQuadratic q(40);
   Eigen::VectorXd mass(40);
   for (Eigen::Index i = 0; i < 40; ++i) mass(i) = 1.0 + 0.5 * std::sin(0.3 * i);
   Eigen::VectorXd x0 = Eigen::VectorXd::Zero(40);
@@ -127,7 +127,7 @@ TEST(DampedDynamics, BothReachNewtonsEquilibriumOfAGrowingShell) {
 }
 
 TEST(DampedDynamics, RefusesBadInputByName) {
-  Quadratic q(5);
+  GradedStiffnessQuadratic q(5);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(5), mass = Eigen::VectorXd::Ones(5);
   const auto message = [&](const DampedDynamicsOptions& o, const Eigen::VectorXd& m,
                            std::vector<Eigen::Index> fixed) {

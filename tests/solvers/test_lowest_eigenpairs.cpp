@@ -18,12 +18,14 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/symmetric_indefinite_factorization.hpp"
 #include "tests/support/sparse_upper.hpp"
+#include "tests/support/vertex_rows.hpp"
 
 namespace growshell {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
+using test_support::vertex_rows;
 
 // Random sparse symmetric indefinite matrix: about `per_row` normal off-diagonal entries per
 // row at random positions and a diagonal uniform in [diag_lo, diag_hi]. Generic spectrum.
@@ -284,12 +286,6 @@ TEST(LowestEigenpairs, RejectsBadInput) {
 //   space), so the pair splits (by 57 %) while the negative count stays 2.
 // Agreement with the dense solver: 1e-12 relative (asserted at 1e-8, see above).
 // ---------------------------------------------------------------------------------------
-
-Eigen::MatrixX3d vertex_rows(const Eigen::VectorXd& x) {
-  Eigen::MatrixX3d p(x.size() / 3, 3);
-  for (Eigen::Index v = 0; v < p.rows(); ++v) p.row(v) = x.segment<3>(3 * v).transpose();
-  return p;
-}
 
 TEST(LowestEigenpairs, FlatDiscPastBucklingHasADoubleNegativePair) {
   DiscMeshOptions mesh;

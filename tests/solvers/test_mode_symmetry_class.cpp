@@ -14,15 +14,13 @@
 #include "solvers/stability/mode_symmetry_class.hpp"
 #include "solvers/stability/vertex_symmetry_group.hpp"
 #include "support/vertex_symmetry_action.hpp"
+#include "tests/support/two_mirrors.hpp"
 
 namespace growshell {
 namespace {
 
 using test_support::apply;
-
-VertexSymmetryGroup two_mirrors(const Eigen::MatrixX3d& P) {
-  return VertexSymmetryGroup(P.rows(), {mirror_symmetry(P, 0, 1e-9), mirror_symmetry(P, 1, 1e-9)});
-}
+using test_support::two_mirrors;
 
 Eigen::MatrixX3d disc_positions() {
   DiscMeshOptions o;

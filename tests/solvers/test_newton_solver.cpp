@@ -40,9 +40,9 @@ class ChainObjective : public SparseObjective {
 
 // Dense symmetric matrix from an upper triangle, for eigenvalue checks.
 // f = 1/2 x^T A x - b^T x with A = tridiag(-1, 4, -1) (eigenvalues in [2, 6]).
-class Quadratic : public ChainObjective {
+class TridiagonalQuadratic : public ChainObjective {
  public:
-  Quadratic(Eigen::Index n, Eigen::VectorXd b) : ChainObjective(n), b_(std::move(b)) {}
+  TridiagonalQuadratic(Eigen::Index n, Eigen::VectorXd b) : ChainObjective(n), b_(std::move(b)) {}
   Eigen::SparseMatrix<double> matrix() const {
     Eigen::SparseMatrix<double> a = hessian_pattern();
     fill(&a);
@@ -241,7 +241,7 @@ Eigen::VectorXd cosine_load(Eigen::Index n) {
 TEST(NewtonSolver, ConvexQuadraticConvergesInOneIteration) {
   const Eigen::Index n = 50;
   const Eigen::VectorXd b = cosine_load(n);
-  Quadratic q(n, b);
+  TridiagonalQuadratic q(n, b);
   NewtonOptions options;
   options.gradient_tolerance = 1e-10;  // cond(A) <= 3: the exact solve leaves ~1e-15
   NewtonSolver solver(options);
@@ -260,7 +260,7 @@ TEST(NewtonSolver, ConvexQuadraticConvergesInOneIteration) {
 }
 
 TEST(NewtonSolver, AlreadyConvergedAtX0TakesNoIteration) {
-  Quadratic q(10, Eigen::VectorXd::Zero(10));
+  TridiagonalQuadratic q(10, Eigen::VectorXd::Zero(10));
   const NewtonResult r = NewtonSolver().minimize(q, Eigen::VectorXd::Zero(10));
   EXPECT_TRUE(r.converged());
   EXPECT_EQ(r.iterations, 0);
@@ -461,7 +461,7 @@ TEST(NewtonSolver, MaxIterationsReturnsBestIterate) {
 // TravelLimit with the current iterate, which lies 1.2 from x0 along the first steps' line.
 TEST(NewtonSolver, TravelLimitStopsAfterTheStepThatReachesIt) {
   const Eigen::Index n = 50;
-  Quadratic q(n, cosine_load(n));
+  TridiagonalQuadratic q(n, cosine_load(n));
   NewtonOptions options;
   options.gradient_tolerance = 1e-10;
   options.max_step_inf_norm = 0.4;
@@ -480,7 +480,7 @@ TEST(NewtonSolver, TravelLimitStopsAfterTheStepThatReachesIt) {
 }
 
 TEST(NewtonSolver, InvalidInputThrows) {
-  Quadratic q(10, Eigen::VectorXd::Ones(10));
+  TridiagonalQuadratic q(10, Eigen::VectorXd::Ones(10));
   NewtonSolver solver;
   EXPECT_THROW(solver.minimize(q, Eigen::VectorXd::Zero(9)), std::invalid_argument);
   EXPECT_THROW(solver.minimize(q, Eigen::VectorXd::Zero(10), {10}), std::invalid_argument);

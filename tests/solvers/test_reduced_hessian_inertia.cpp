@@ -17,11 +17,13 @@
 #include <vector>
 
 #include "solvers/stability/reduced_hessian_inertia.hpp"
+#include "tests/support/count_below.hpp"
 
 namespace growshell {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
+using test_support::count_below;
 constexpr double kPi = 3.14159265358979323846;
 
 Eigen::MatrixXd random_matrix(Eigen::Index rows, Eigen::Index cols, std::mt19937& rng) {
@@ -53,7 +55,7 @@ Eigen::VectorXd random_spectrum(Eigen::Index n, int negatives, std::mt19937& rng
   return e;
 }
 
-SpMat upper_of(const Eigen::MatrixXd& dense) {
+SpMat sparse_upper_of(const Eigen::MatrixXd& dense) {
   SpMat u = Eigen::MatrixXd(dense.triangularView<Eigen::Upper>()).sparseView();
   u.makeCompressed();
   return u;
@@ -89,10 +91,6 @@ Eigen::VectorXd dense_reduced_eigenvalues(const Eigen::MatrixXd& h, const Eigen:
   const Eigen::MatrixXd reduced = z.transpose() * h_f * z;
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (reduced + reduced.transpose()))
       .eigenvalues();
-}
-
-int count_below(const Eigen::VectorXd& e, double value) {
-  return static_cast<int>((e.array() < value).count());
 }
 
 // Orthonormal bases Y of range(J^T) and Z of null(J) (J full rank), n x m and n x (n - m).
@@ -163,7 +161,7 @@ TEST(ReducedHessianInertia, MatchesDenseCountOnRandomProblems) {
           const double gap = e.cwiseAbs().minCoeff() / e.cwiseAbs().maxCoeff();
           smallest_gap = std::min(smallest_gap, gap);
           ASSERT_GT(gap, 1e-8) << "m " << m << " negatives " << negatives << " trial " << trial;
-          const ReducedInertia r = reduced_hessian_inertia(upper_of(h), sparse_of(j), fixed);
+          const ReducedInertia r = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), fixed);
           const int expected = count_below(e, 0.0);
           EXPECT_EQ(r.negative, expected)
               << "m " << m << " negatives " << negatives << " fixed " << fixed.size()
@@ -205,18 +203,19 @@ TEST(ReducedHessianInertia, IndefiniteHessianWithPositiveDefiniteReduction) {
   const Eigen::MatrixXd h = assemble_from_blocks(s, a, -3.0 * Eigen::MatrixXd::Identity(m, m), c);
   ASSERT_EQ(count_below(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(h).eigenvalues(), 0.0), 5);
 
-  const ReducedInertia plain = reduced_hessian_inertia(upper_of(h), SpMat(0, n), {});
+  const ReducedInertia plain = reduced_hessian_inertia(sparse_upper_of(h), SpMat(0, n), {});
   EXPECT_EQ(plain.negative, 5);
   EXPECT_EQ(plain.zero, 0);
   EXPECT_EQ(plain.constraints, 0);
-  const ReducedInertia reduced = reduced_hessian_inertia(upper_of(h), sparse_of(j), {});
+  const ReducedInertia reduced = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {});
   EXPECT_EQ(reduced.negative, 0);
   EXPECT_EQ(reduced.zero, 0);
   EXPECT_EQ(reduced.constraints, 5);
   EXPECT_EQ(reduced.free_dofs, 30);
   // Dropping one constraint frees a direction with a negative component: the reduction by the
   // other four keeps some of H's negative space (interlacing: at least 5 - 4 = 1).
-  const ReducedInertia four = reduced_hessian_inertia(upper_of(h), sparse_of(j.topRows(4)), {});
+  const ReducedInertia four =
+      reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j.topRows(4)), {});
   EXPECT_EQ(four.negative, count_below(dense_reduced_eigenvalues(h, j.topRows(4), {}), 0.0));
   EXPECT_GE(four.negative, 1);
 }
@@ -235,8 +234,8 @@ TEST(ReducedHessianInertia, NegativeDirectionsInTheTangentSpaceSurvive) {
   const Eigen::MatrixXd a = with_spectrum(random_spectrum(n - m, 2, rng), rng);
   const Eigen::MatrixXd b = with_spectrum(random_spectrum(m, 0, rng), rng);
   const Eigen::MatrixXd h = assemble_from_blocks(s, a, b, Eigen::MatrixXd::Zero(n - m, m));
-  EXPECT_EQ(reduced_hessian_inertia(upper_of(h), SpMat(0, n), {}).negative, 2);
-  const ReducedInertia r = reduced_hessian_inertia(upper_of(h), sparse_of(j), {});
+  EXPECT_EQ(reduced_hessian_inertia(sparse_upper_of(h), SpMat(0, n), {}).negative, 2);
+  const ReducedInertia r = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {});
   EXPECT_EQ(r.negative, 2);
   EXPECT_EQ(r.zero, 0);
 }
@@ -251,25 +250,25 @@ TEST(ReducedHessianInertia, FixedDofsAreRemoved) {
   d(9) = -0.5;
   Eigen::MatrixXd h = d.asDiagonal();
   h(0, 1) = h(1, 0) = 0.3;  // some coupling, still positive on the block {0, 1}
-  EXPECT_EQ(reduced_hessian_inertia(upper_of(h), SpMat(0, n), {}).negative, 2);
-  const ReducedInertia fixed = reduced_hessian_inertia(upper_of(h), SpMat(0, n), {4});
+  EXPECT_EQ(reduced_hessian_inertia(sparse_upper_of(h), SpMat(0, n), {}).negative, 2);
+  const ReducedInertia fixed = reduced_hessian_inertia(sparse_upper_of(h), SpMat(0, n), {4});
   EXPECT_EQ(fixed.negative, 1);
   EXPECT_EQ(fixed.free_dofs, 11);
   // The constraint dx_9 = 0 instead of fixing dof 9, together with fixed dof 4: stable.
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(1, n);
   j(0, 9) = 2.5;
-  const ReducedInertia both = reduced_hessian_inertia(upper_of(h), sparse_of(j), {4});
+  const ReducedInertia both = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {4});
   EXPECT_EQ(both.negative, 0);
   EXPECT_EQ(both.zero, 0);
   EXPECT_EQ(both.constraints, 1);
   EXPECT_EQ(both.free_dofs, 11);
   // Entries of J on fixed dofs are ignored: a constraint row touching fixed dof 4 as well.
   j(0, 4) = 7.0;
-  EXPECT_EQ(reduced_hessian_inertia(upper_of(h), sparse_of(j), {4}).negative, 0);
+  EXPECT_EQ(reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {4}).negative, 0);
   // Everything fixed, no constraints: the empty reduction.
   std::vector<Eigen::Index> all(static_cast<size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) all[static_cast<size_t>(i)] = i;
-  const ReducedInertia none = reduced_hessian_inertia(upper_of(h), SpMat(0, n), all);
+  const ReducedInertia none = reduced_hessian_inertia(sparse_upper_of(h), SpMat(0, n), all);
   EXPECT_EQ(none.negative, 0);
   EXPECT_EQ(none.zero, 0);
   EXPECT_EQ(none.free_dofs, 0);
@@ -287,7 +286,7 @@ TEST(ReducedHessianInertia, ExactlySingularReductionHasZeroCount) {
       0, 0, 0, 3;
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(1, 4);
   j(0, 3) = 1.0;
-  const ReducedInertia r = reduced_hessian_inertia(upper_of(h), sparse_of(j), {});
+  const ReducedInertia r = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {});
   EXPECT_EQ(r.zero, 1);
   EXPECT_EQ(r.negative, 1);
   EXPECT_EQ(r.constraints, 1);
@@ -317,13 +316,13 @@ TEST(ReducedHessianInertia, SingularToRoundOffCountsZerosWithAThreshold) {
   ASSERT_LT(e.cwiseAbs().minCoeff(), 1e-13);  // premise: singular to round-off
   SymmetricIndefiniteOptions tolerant;
   tolerant.null_pivot_threshold = 1e-10;
-  const ReducedInertia r = reduced_hessian_inertia(upper_of(h), sparse_of(j), {}, tolerant);
+  const ReducedInertia r = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {}, tolerant);
   EXPECT_EQ(r.zero, 2);
   EXPECT_EQ(r.negative, 2);
   // With the default threshold the two near-zero pivots land somewhere among zero, negative
   // and positive (measured: one negative, one positive, no zero); the clearly negative ones
   // are still all counted.
-  const ReducedInertia d = reduced_hessian_inertia(upper_of(h), sparse_of(j), {});
+  const ReducedInertia d = reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {});
   EXPECT_GE(d.negative, 2);
   EXPECT_LE(d.negative + d.zero, 4);
   RecordProperty("default_threshold_negative", d.negative);
@@ -331,7 +330,8 @@ TEST(ReducedHessianInertia, SingularToRoundOffCountsZerosWithAThreshold) {
 
   spectrum(0) = spectrum(1) = 0.5;
   const Eigen::MatrixXd h2 = assemble_from_blocks(s, with_spectrum(spectrum, rng), b, c);
-  const ReducedInertia r2 = reduced_hessian_inertia(upper_of(h2), sparse_of(j), {}, tolerant);
+  const ReducedInertia r2 =
+      reduced_hessian_inertia(sparse_upper_of(h2), sparse_of(j), {}, tolerant);
   EXPECT_EQ(r2.zero, 0);
   EXPECT_EQ(r2.negative, 2);
 }
@@ -399,7 +399,7 @@ TEST(ReducedHessianInertia, RankDeficientJacobianThrows) {
   for (const int negatives : {0, 8}) {
     const Eigen::MatrixXd h = with_spectrum(random_spectrum(n, negatives, rng), rng);
     const std::string message =
-        runtime_message([&] { reduced_hessian_inertia(upper_of(h), sparse_of(j), {}); });
+        runtime_message([&] { reduced_hessian_inertia(sparse_upper_of(h), sparse_of(j), {}); });
     EXPECT_NE(message.find("rank deficient"), std::string::npos) << message;
     EXPECT_NE(message.find("1 of its 3 rows depend"), std::string::npos) << message;
     EXPECT_NE(message.find("Drop the dependent constraints"), std::string::npos) << message;
@@ -409,14 +409,15 @@ TEST(ReducedHessianInertia, RankDeficientJacobianThrows) {
   on_fixed(0, 1) = 1.0;
   on_fixed(1, 5) = 1.0;
   on_fixed(1, 6) = 1.0;
-  const std::string message = runtime_message(
-      [&] { reduced_hessian_inertia(upper_of(h), sparse_of(on_fixed), {5, 6}); });
+  const std::string message = runtime_message([&] {
+    reduced_hessian_inertia(sparse_upper_of(h), sparse_of(on_fixed), {5, 6});
+  });
   EXPECT_NE(message.find("row 1 has no nonzero entry on a free dof"), std::string::npos)
       << message;
   std::vector<Eigen::Index> most(27);
   for (int i = 0; i < 27; ++i) most[static_cast<size_t>(i)] = i;
   const std::string too_many = runtime_message([&] {
-    reduced_hessian_inertia(upper_of(h), sparse_of(random_matrix(4, n, rng)), most);
+    reduced_hessian_inertia(sparse_upper_of(h), sparse_of(random_matrix(4, n, rng)), most);
   });
   EXPECT_NE(too_many.find("4 constraints on 3 free dofs"), std::string::npos) << too_many;
 }
@@ -425,7 +426,7 @@ TEST(ReducedHessianInertia, RejectsBadInputNamingIt) {
   std::mt19937 rng(17);
   const Eigen::Index n = 6;
   const Eigen::MatrixXd h = with_spectrum(random_spectrum(n, 1, rng), rng);
-  const SpMat hu = upper_of(h);
+  const SpMat hu = sparse_upper_of(h);
   const SpMat j = sparse_of(random_matrix(2, n, rng));
   EXPECT_NE(invalid_message([&] { reduced_hessian_inertia(hu, sparse_of(random_matrix(2, 5, rng)), {}); })
                 .find("constraint_jacobian is 2 x 5, expected 6 columns"),

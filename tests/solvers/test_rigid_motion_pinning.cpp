@@ -17,9 +17,14 @@
 #include "core/sparse_objective.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/newton/newton_solver.hpp"
+#include "tests/support/max_abs_at.hpp"
+#include "tests/support/scientific.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::max_abs_at;
+using test_support::scientific;
 
 Eigen::MatrixX3d random_cloud(int n, unsigned seed) {
   std::mt19937 rng(seed);
@@ -172,18 +177,6 @@ std::vector<int> all_vertices(Eigen::Index n) {
   std::vector<int> v(static_cast<std::size_t>(n));
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<int>(i);
   return v;
-}
-
-std::string scientific(double v) {
-  std::ostringstream s;
-  s << std::scientific << v;
-  return s.str();
-}
-
-double max_abs_at(const Eigen::VectorXd& g, const std::vector<Eigen::Index>& dofs) {
-  double m = 0.0;
-  for (const Eigen::Index d : dofs) m = std::max(m, std::abs(g[d]));
-  return m;
 }
 
 TEST(RigidMotionPinning, PinnedSpringNetworkHasNoReactions) {

@@ -21,9 +21,14 @@
 #include "solvers/newton/newton_solver.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/positive_definiteness.hpp"
+#include "tests/support/max_abs_at.hpp"
+#include "tests/support/vertex_rows.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::max_abs_at;
+using test_support::vertex_rows;
 
 constexpr double kYoung = 1e4;
 constexpr double kPoisson = 0.3;
@@ -33,18 +38,6 @@ ShellModelSettings settings_with(double h) {
   s.material = {kYoung, kPoisson};
   s.thickness = constant_thickness(h);
   return s;
-}
-
-Eigen::MatrixX3d vertex_rows(const Eigen::VectorXd& x) {
-  Eigen::MatrixX3d p(x.size() / 3, 3);
-  for (Eigen::Index v = 0; v < p.rows(); ++v) p.row(v) = x.segment<3>(3 * v).transpose();
-  return p;
-}
-
-double max_abs_at(const Eigen::VectorXd& g, const std::vector<Eigen::Index>& dofs) {
-  double m = 0.0;
-  for (const Eigen::Index d : dofs) m = std::max(m, std::abs(g(d)));
-  return m;
 }
 
 // ---------------------------------------------------------------------------------------

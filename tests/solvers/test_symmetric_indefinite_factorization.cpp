@@ -13,6 +13,10 @@
 #include <vector>
 
 #include "solvers/newton/cholmod_factorization.hpp"
+#include "tests/support/count_below.hpp"
+#include "tests/support/random_spd_grid.hpp"
+#include "tests/support/random_vector.hpp"
+#include "tests/support/scientific.hpp"
 #include "tests/support/sparse_upper.hpp"
 
 namespace growshell {
@@ -20,6 +24,10 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
+using test_support::count_below;
+using test_support::random_spd_full;
+using test_support::random_vector;
+using test_support::scientific;
 
 // Edges of a side x side grid (4-neighbours plus one diagonal): mesh-like sparsity, so that
 // the ordering and the elimination tree are those of a 2-D problem.
@@ -34,28 +42,6 @@ std::vector<std::pair<int, int>> grid_edges(int side) {
     }
   }
   return edges;
-}
-
-// Random-sign edge weights, made strictly diagonally dominant with a random positive excess:
-// symmetric positive definite, with a generic (simple) spectrum.
-SpMat random_spd_full(int side, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> weight(-1.0, 1.0);
-  std::uniform_real_distribution<double> excess(0.1, 1.0);
-  const int n = side * side;
-  Triplets t;
-  Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(n);
-  for (const auto& [a, b] : grid_edges(side)) {
-    const double w = weight(rng);
-    t.emplace_back(a, b, w);
-    t.emplace_back(b, a, w);
-    row_sum[a] += std::abs(w);
-    row_sum[b] += std::abs(w);
-  }
-  for (int v = 0; v < n; ++v) t.emplace_back(v, v, row_sum[v] + excess(rng));
-  SpMat a(n, n);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
 }
 
 // A matrix with the 4-fold rotational symmetry of a ring of four identical random patches:
@@ -162,27 +148,8 @@ Eigen::VectorXd eigenvalues(const SpMat& full) {
   return eig.eigenvalues();  // ascending
 }
 
-int count_below(const Eigen::VectorXd& lambda, double sigma) {
-  return static_cast<int>(
-      std::count_if(lambda.begin(), lambda.end(), [sigma](double l) { return l < sigma; }));
-}
-
 double distance_to_spectrum(const Eigen::VectorXd& lambda, double sigma) {
   return (lambda.array() - sigma).abs().minCoeff();
-}
-
-Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = d(rng);
-  return v;
-}
-
-std::string scientific(double v) {
-  std::ostringstream s;
-  s << std::scientific << v;
-  return s.str();
 }
 
 // The inertia of A - sigma*I is exact as long as the backward error of the LDL^T

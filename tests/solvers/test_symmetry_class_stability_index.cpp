@@ -28,6 +28,7 @@
 #include "solvers/stability/symmetry_class_stability_index.hpp"
 #include "solvers/stability/vertex_symmetry_group.hpp"
 #include "support/vertex_symmetry_action.hpp"
+#include "tests/support/two_mirrors.hpp"
 
 namespace growshell {
 namespace {
@@ -48,9 +49,9 @@ Eigen::MatrixX3d as_rows(const Eigen::VectorXd& x) {
   return Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(x.data(), x.size() / 3, 3);
 }
 
-VertexSymmetryGroup two_mirrors(const ShellModel& model) {
-  const Eigen::MatrixX3d P = as_rows(model.reference_positions());
-  return VertexSymmetryGroup(P.rows(), {mirror_symmetry(P, 0, 1e-9), mirror_symmetry(P, 1, 1e-9)});
+/// The two mirrors of the model's reference.
+VertexSymmetryGroup reference_two_mirrors(const ShellModel& model) {
+  return test_support::two_mirrors(as_rows(model.reference_positions()));
 }
 
 std::vector<Eigen::Index> six_pins(const ShellModel& model) {
@@ -75,7 +76,7 @@ Eigen::VectorXd flat_equilibrium(const ShellModel& model, double phi_e) {
 
 TEST(VertexSymmetryGroup, ClassesOfTwoMirrorsSplitTheSpaceWithTheirSigns) {
   const ShellModel model = disc();
-  const VertexSymmetryGroup group = two_mirrors(model);
+  const VertexSymmetryGroup group = reference_two_mirrors(model);
   EXPECT_EQ(group.order(), 4);
   const std::vector<std::vector<int>> characters = group.splitting_characters();
   ASSERT_EQ(characters.size(), 4u);
@@ -132,7 +133,7 @@ TEST(VertexSymmetryGroup, SignsThatAreNoCharacterAndGroupsThatDoNotSplitAreRefus
 
 TEST(SymmetryClassStabilityIndex, TheHessianOfAStateWithTheMirrorsIsBlockDiagonalOverTheClasses) {
   const ShellModel model = disc();
-  const VertexSymmetryGroup group = two_mirrors(model);
+  const VertexSymmetryGroup group = reference_two_mirrors(model);
   Eigen::VectorXd x = model.reference_positions();
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) {
     const double px = x(3 * v), py = x(3 * v + 1);
@@ -162,7 +163,7 @@ TEST(SymmetryClassStabilityIndex, TheHessianOfAStateWithTheMirrorsIsBlockDiagona
 
 class GrownFlatDisc : public ::testing::Test {
  protected:
-  GrownFlatDisc() : model_(disc()), group_(two_mirrors(model_)) {}
+  GrownFlatDisc() : model_(disc()), group_(reference_two_mirrors(model_)) {}
   ShellModel model_;
   VertexSymmetryGroup group_;
 };

@@ -14,14 +14,14 @@
 #include "studies/atomic_file.hpp"
 #include "studies/saved_state.hpp"
 #include "tests/studies/scratch_directory.hpp"
+#include "tests/support/branch_columns.hpp"
 
 namespace growshell {
 namespace {
 
 namespace fs = std::filesystem;
 using BranchRecordTest = testing::ScratchDirectoryTest;
-
-const std::vector<std::string> kColumns = {"phi_e", "n_negative", "s4_defect"};
+using test_support::kBranchColumns;
 
 BranchSample sample(double phi) {
   BranchSample s;
@@ -40,7 +40,7 @@ void record_sample(BranchRecord& r, double phi) {
 }
 
 TEST_F(BranchRecordTest, FreshRecordWritesHeaderRowsStatesAndEvents) {
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
   EXPECT_EQ(read(path("branch.csv")), "phi_e,n_negative,s4_defect\n");
   EXPECT_EQ(read(path("events.json")), "[\n]\n");
   r.add_event("{\"kind\": \"branch_point\", \"phi_e\": 0.5}", {"branch_point", 0.5, "flat", {}});
@@ -74,7 +74,7 @@ TEST_F(BranchRecordTest, FreshRecordWritesHeaderRowsStatesAndEvents) {
 
 TEST_F(BranchRecordTest, ContinueCutsTheRecordBackToItsLastCommit) {
   {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
     r.add_event("{\"kind\": \"branch_point\", \"phi_e\": 0.5}", {"branch_point", 0.5, "flat", {}});
     record_sample(r, 0.5);
     record_sample(r, 0.6);
@@ -86,7 +86,7 @@ TEST_F(BranchRecordTest, ContinueCutsTheRecordBackToItsLastCommit) {
   }
   write(path("states/.point_00003.state.tmp"), "partial");
   write(path(".branch.pvd.tmp"), "partial");
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Continue);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Continue);
   EXPECT_EQ(r.rows(), 2u);
   EXPECT_EQ(read(path("branch.csv")), "phi_e,n_negative,s4_defect\n0.5,0,5e-08\n0.6,0,6e-08\n");
   ASSERT_EQ(r.events().size(), 1u);
@@ -105,7 +105,7 @@ TEST_F(BranchRecordTest, ContinueCutsTheRecordBackToItsLastCommit) {
 
 TEST_F(BranchRecordTest, FreshRecordReplacesAnEarlierOne) {
   {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
     record_sample(r, 0.5);
     SurfaceSnapshot s;
     s.points = Eigen::MatrixX3d::Zero(3, 3);
@@ -117,7 +117,7 @@ TEST_F(BranchRecordTest, FreshRecordReplacesAnEarlierOne) {
   }
   write(path("notes.txt"), "mine");
   EXPECT_TRUE(fs::exists(path("branch.pvd")));
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
   EXPECT_EQ(r.rows(), 0u);
   EXPECT_TRUE(listing("states").empty());
   // The earlier record's files are gone; files it did not write stay.
@@ -135,7 +135,7 @@ TEST_F(BranchRecordTest, ContinueAdoptsADirectoryWithoutRecordJson) {
   // Its states in the text format of that version.
   write(path("states/point_00000.txt"), "0.1\n1\n6\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n");
   write(path("states/point_00001.txt"), "0.2\n1\n6\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n");
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Continue);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Continue);
   EXPECT_EQ(r.rows(), 2u);
   ASSERT_EQ(r.events().size(), 2u);
   EXPECT_EQ(r.events()[1].kind, "symmetry_lost");
@@ -149,20 +149,20 @@ TEST_F(BranchRecordTest, ContinueAdoptsADirectoryWithoutRecordJson) {
   EXPECT_TRUE(BranchRecord::exists(dir_.string()));
   // Without any record a continued one starts fresh.
   fs::remove_all(path("other"));
-  BranchRecord fresh(path("other"), kColumns, BranchRecord::Start::Continue);
+  BranchRecord fresh(path("other"), kBranchColumns, BranchRecord::Start::Continue);
   EXPECT_EQ(read(path("other/branch.csv")), "phi_e,n_negative,s4_defect\n");
 }
 
 TEST_F(BranchRecordTest, ContinueRefusesARecordThatDoesNotFit) {
   {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
     record_sample(r, 0.5);
   }
   EXPECT_THROW(BranchRecord(dir_.string(), {"phi_e", "other"}, BranchRecord::Start::Continue),
                std::runtime_error);
   write(path("branch.csv"), "phi_e,n_negative,s4_defect\n");  // fewer rows than committed
   try {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Continue);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Continue);
     FAIL() << "a record that lost a committed row was continued";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("branch.csv has 0 rows"), std::string::npos) << e.what();
@@ -173,7 +173,7 @@ TEST_F(BranchRecordTest, NearestSavedStateIsTheOneWithTheNearestExcessAngle) {
   fs::create_directories(path("states"));
   EXPECT_FALSE(nearest_saved_state(dir_.string(), 1.0, 6).has_value());  // no state in it
   {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
     for (const double phi : {0.5, 0.9, 1.3, 1.1}) record_sample(r, phi);
   }
   EXPECT_EQ(nearest_saved_state(dir_.string(), 1.0, 6)->parameter, 0.9);
@@ -187,7 +187,7 @@ TEST_F(BranchRecordTest, NearestSavedStatesAreEachOnceInTraceOrder) {
   fs::create_directories(path("states"));
   EXPECT_TRUE(nearest_saved_states(dir_.string(), {1.0}, 6).empty());  // no state in it
   {
-    BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+    BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
     for (const double phi : {0.5, 0.9, 1.3, 1.1}) record_sample(r, phi);
   }
   // 1.25 and 9 both take 1.3, the third state; 1.2 takes 1.1, the fourth; 0.8 takes 0.9.

@@ -7,17 +7,18 @@
 #include <vector>
 
 #include "tests/studies/scratch_directory.hpp"
+#include "tests/support/branch_columns.hpp"
 
 namespace growshell {
 namespace {
 
 using ConeBranchKeyValues = testing::ScratchDirectoryTest;
+using test_support::kBranchColumns;
 
-const std::vector<std::string> kColumns = {"phi_e", "n_negative", "s4_defect"};
 const double kNan = std::numeric_limits<double>::quiet_NaN();
 
 TEST_F(ConeBranchKeyValues, FromTheRecordedEventsAndRows) {
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
   r.add_event("{}", {"branch_point", 0.017, "flat", {}});
   r.add_event("{}", {"branch_point", 0.018, "flat", {}});
   // Rows: the switch onto the cone (left out below 0.1), then a stable stretch, contact at
@@ -51,7 +52,7 @@ TEST_F(ConeBranchKeyValues, FromTheRecordedEventsAndRows) {
 
   // The three-fold cone leaves the flat branch at its own branch point, after the two-fold
   // one's: phi_branch is the cone_entry event's.
-  BranchRecord three((dir_ / "three").string(), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord three((dir_ / "three").string(), kBranchColumns, BranchRecord::Start::Fresh);
   three.add_event("{}", {"branch_point", 0.017, "flat", {}});
   three.add_event("{}", {"branch_point", 0.034, "flat", {}});
   three.add_event("{}", {"cone_entry", 0.034, "flat", {{"mode", 3.0}}});
@@ -62,7 +63,7 @@ TEST_F(ConeBranchKeyValues, FromTheRecordedEventsAndRows) {
 }
 
 TEST_F(ConeBranchKeyValues, NullWhereTheRecordHasNothing) {
-  BranchRecord r(dir_.string(), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord r(dir_.string(), kBranchColumns, BranchRecord::Start::Fresh);
   ConeBranchResults results;
   results.phi_kiss = 7.0;  // reset: the record has no such event
   set_cone_branch_key_values(r, results);
@@ -77,7 +78,7 @@ TEST_F(ConeBranchKeyValues, NullWhereTheRecordHasNothing) {
   set_cone_branch_key_values(r, results);
   EXPECT_EQ(results.max_s4_defect_before_contact, 5e-7);
   EXPECT_FALSE(results.phi_crit_stability.has_value());
-  BranchRecord three(path("three"), kColumns, BranchRecord::Start::Fresh);
+  BranchRecord three(path("three"), kBranchColumns, BranchRecord::Start::Fresh);
   three.append_row({0.5, 0, kNan});
   set_cone_branch_key_values(three, results);
   EXPECT_FALSE(results.max_s4_defect_before_contact.has_value());

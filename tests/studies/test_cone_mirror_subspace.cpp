@@ -23,7 +23,7 @@ ShellModelSettings settings() {
   return s;
 }
 
-ShellModel gmsh_model(bool dihedral) {
+ShellModel coarse_gmsh_model(bool dihedral) {
   GmshDiscMeshOptions o;
   o.size_slope = 0.2;
   o.size_floor = 0.04;
@@ -40,11 +40,11 @@ TEST(ConeMirrorSubspace, FoundOnMeshesWithTheMirrorsAndNotWithout) {
   EXPECT_NE(on_rings.subspace, nullptr);
   EXPECT_EQ(on_rings.note, "");
 
-  const ConeSubspaceChoice on_d4 = cone_mirror_subspace(gmsh_model(true), 1.0, 2);
+  const ConeSubspaceChoice on_d4 = cone_mirror_subspace(coarse_gmsh_model(true), 1.0, 2);
   EXPECT_NE(on_d4.subspace, nullptr);
   EXPECT_EQ(on_d4.note, "");
 
-  const ConeSubspaceChoice on_gmsh = cone_mirror_subspace(gmsh_model(false), 1.0, 2);
+  const ConeSubspaceChoice on_gmsh = cone_mirror_subspace(coarse_gmsh_model(false), 1.0, 2);
   EXPECT_EQ(on_gmsh.subspace, nullptr);
   EXPECT_NE(on_gmsh.note.find("full space"), std::string::npos) << on_gmsh.note;
 }
@@ -54,7 +54,7 @@ TEST(ConeMirrorSubspace, FoundOnMeshesWithTheMirrorsAndNotWithout) {
 // mesh's vertex maps: the energies at phi_e = 3 agree to 1e-12 relative, though the state's
 // own energy is far from any symmetric state's.
 TEST(ConeMirrorSubspace, TheEnergyOnGmshD4HasTheMeshSymmetry) {
-  const ShellModel model = gmsh_model(true);
+  const ShellModel model = coarse_gmsh_model(true);
   const Eigen::VectorXd X = model.reference_positions();
   const Eigen::Index n = X.size() / 3;
   Eigen::VectorXd x(X.size());

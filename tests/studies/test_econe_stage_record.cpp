@@ -16,7 +16,7 @@ namespace {
 using EconeStageRecordFile = testing::ScratchDirectoryTest;
 /// The message of the std::runtime_error that `f` throws ("" if it throws nothing).
 template <class F>
-std::string error_of(F&& f) {
+std::string runtime_error_of(F&& f) {
   return test_support::error_of<std::runtime_error>(std::forward<F>(f));
 }
 
@@ -145,7 +145,8 @@ TEST(EconeStageRecordJson, AnEmptyRecordHoldsOnlyItsKey) {
 
 TEST(EconeStageRecordJson, NamesWhatIsWrongWithABadRecord) {
   const auto error = [](const std::string& text) {
-    return error_of([&] { parse_econe_stage_record(text, "the stage record x/stages.json"); });
+    return runtime_error_of(
+        [&] { parse_econe_stage_record(text, "the stage record x/stages.json"); });
   };
   const std::string good = econe_stage_record_json(full_record());
   EXPECT_NE(error("{").find("x/stages.json: not JSON"), std::string::npos) << error("{");
@@ -178,7 +179,7 @@ TEST_F(EconeStageRecordFile, IsAbsentUntilWrittenThenReadBack) {
   EXPECT_EQ(econe_stage_record_json(*back), econe_stage_record_json(full_record()));
   EXPECT_EQ(listing(), (std::vector<std::string>{"stages.json"}));  // no temporary left
   write(file, "{\"format\": 1");  // cut short
-  EXPECT_NE(error_of([&] { read_econe_stage_record(file); }).find(file + ": not JSON"),
+  EXPECT_NE(runtime_error_of([&] { read_econe_stage_record(file); }).find(file + ": not JSON"),
             std::string::npos);
 }
 

@@ -23,7 +23,7 @@ ShellModel rings_model() {
   return ShellModel(make_ring_disc_mesh(o), ShellModelSettings{});
 }
 
-ShellModel gmsh_model() {
+ShellModel fine_gmsh_model() {
   GmshDiscMeshOptions o;
   o.size_slope = 0.15;
   o.size_floor = 0.03;
@@ -53,7 +53,7 @@ TEST(PatternOrientation, IsExactOnTheMirrorsOfTheRingsMesh) {
 }
 
 TEST(PatternOrientation, FallsBackOnTheDirectionForTheFlatSheet) {
-  const ShellModel model = gmsh_model();
+  const ShellModel model = fine_gmsh_model();
   const Eigen::VectorXd flat = model.reference_positions();
   const Eigen::VectorXd mode = pattern(model, 2, -0.4) - flat;
   EXPECT_NEAR(pattern_orientation(model, flat, mode, 2), -0.4, 2e-2);
@@ -64,7 +64,7 @@ TEST(PatternOrientation, FallsBackOnTheDirectionForTheFlatSheet) {
 }
 
 TEST(PatternPhaseFunctional, VanishesOnItsStateAndMeasuresATurn) {
-  const ShellModel model = gmsh_model();
+  const ShellModel model = fine_gmsh_model();
   const Eigen::VectorXd none = Eigen::VectorXd::Zero(model.dimension());
   const double theta0 = pattern_orientation(model, pattern(model, 2, 0.7), none, 2);
   const Eigen::VectorXd x = pattern(model, 2, theta0);

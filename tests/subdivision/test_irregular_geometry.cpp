@@ -18,11 +18,13 @@
 #include "libshell/subdivision/element_patches.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
 #include "libshell/subdivision/triangle_quadrature.hpp"
+#include "tests/support/convergence_rate.hpp"
 #include "tests/support/polygon_disc.hpp"
 
 namespace growshell {
 namespace {
 
+using test_support::convergence_rate;
 using test_support::polygon_disc;
 
 /// Closest-point data of an exact surface at x: signed distance, unit normal, mean curvature.
@@ -72,8 +74,9 @@ Errors collect(const std::vector<ElementErrors>& elements,
 /// Per-element errors (degree-4 quadrature points) of the limit surface of `mesh` against
 /// `exact`; `planar` is the same control mesh before the map onto the surface, and the
 /// vertices [0, num_sheet_vertices) are the sheet (the rest is the ghost layer).
-std::vector<ElementErrors> measure(const TriangleMesh& planar, const TriangleMesh& mesh,
-                                   const ExactSurface& exact) {
+std::vector<ElementErrors> measure_element_errors(const TriangleMesh& planar,
+                                                  const TriangleMesh& mesh,
+                                                  const ExactSurface& exact) {
   const MeshTopology topology(mesh);
   const ElementPatches patches = build_element_patches(topology);
   const auto rule = triangle_quadrature(4);
@@ -149,8 +152,6 @@ ExactSurface cylinder(double rho) {
   };
 }
 
-double rate(double coarse, double fine) { return std::log2(coarse / fine); }
-
 constexpr double kSphereRadius = 2.0;    // the unit disc covers 0.5 rad of it
 constexpr double kCylinderRadius = 1.0;  // the unit disc wraps 2 rad round it
 constexpr double kCore = 0.2;            // "away from the centre": planar centroid |X| >= kCore
@@ -167,7 +168,7 @@ struct Level {
 };
 Level measure_level(const TriangleMesh& planar, Surface surface, double h) {
   const bool on_s = surface == Surface::Sphere;
-  const std::vector<ElementErrors> el = measure(
+  const std::vector<ElementErrors> el = measure_element_errors(
       planar, on_s ? on_sphere(planar, kSphereRadius) : on_cylinder(planar, kCylinderRadius),
       on_s ? sphere(kSphereRadius) : cylinder(kCylinderRadius));
   Level l;
@@ -196,12 +197,15 @@ void print(const std::string& family, const std::vector<Level>& levels) {
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     const Level &a = levels[k], &b = levels[k + 1];
     std::printf("  rate | %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f %.2f %.2f %.2f | %.2f\n",
-                rate(a.all.position, b.all.position), rate(a.all.rms_position, b.all.rms_position),
-                rate(a.all.normal, b.all.normal), rate(a.all.rms_normal, b.all.rms_normal),
-                rate(a.all.H, b.all.H), rate(a.all.rms_H, b.all.rms_H),
-                rate(a.away.position, b.away.position), rate(a.away.normal, b.away.normal),
-                rate(a.away.H, b.away.H), rate(a.away.rms_H, b.away.rms_H),
-                rate(a.regular.H, b.regular.H));
+                convergence_rate(a.all.position, b.all.position),
+                convergence_rate(a.all.rms_position, b.all.rms_position),
+                convergence_rate(a.all.normal, b.all.normal),
+                convergence_rate(a.all.rms_normal, b.all.rms_normal),
+                convergence_rate(a.all.H, b.all.H), convergence_rate(a.all.rms_H, b.all.rms_H),
+                convergence_rate(a.away.position, b.away.position),
+                convergence_rate(a.away.normal, b.away.normal),
+                convergence_rate(a.away.H, b.away.H), convergence_rate(a.away.rms_H, b.away.rms_H),
+                convergence_rate(a.regular.H, b.regular.H));
   }
 }
 
@@ -245,20 +249,20 @@ TEST_P(IrregularGeometryPolygonDisc, ErrorsFallAtMeasuredRates) {
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     const Level &a = levels[k], &b = levels[k + 1];
     SCOPED_TRACE("h = " + std::to_string(a.h) + " -> " + std::to_string(b.h));
-    EXPECT_GT(rate(a.all.position, b.all.position), 1.9);
-    EXPECT_GT(rate(a.all.rms_position, b.all.rms_position), 1.9);
-    EXPECT_GT(rate(a.all.normal, b.all.normal), 0.9);
-    EXPECT_GT(rate(a.all.rms_normal, b.all.rms_normal), 1.6);
-    EXPECT_GT(rate(a.all.rms_H, b.all.rms_H), 0.9);
-    EXPECT_GT(rate(a.away.H, b.away.H), 0.8);
-    EXPECT_GT(rate(a.away.rms_H, b.away.rms_H), 1.5);
+    EXPECT_GT(convergence_rate(a.all.position, b.all.position), 1.9);
+    EXPECT_GT(convergence_rate(a.all.rms_position, b.all.rms_position), 1.9);
+    EXPECT_GT(convergence_rate(a.all.normal, b.all.normal), 0.9);
+    EXPECT_GT(convergence_rate(a.all.rms_normal, b.all.rms_normal), 1.6);
+    EXPECT_GT(convergence_rate(a.all.rms_H, b.all.rms_H), 0.9);
+    EXPECT_GT(convergence_rate(a.away.H, b.away.H), 0.8);
+    EXPECT_GT(convergence_rate(a.away.rms_H, b.away.rms_H), 1.5);
   }
   const Level& before = levels[levels.size() - 2];
-  EXPECT_GT(rate(before.away.normal, fine.away.normal), 1.8);
-  EXPECT_GT(rate(before.away.H, fine.away.H), 1.8);
-  EXPECT_GT(rate(before.away.rms_H, fine.away.rms_H), 1.9);
-  EXPECT_GT(rate(coarse.away.normal, fine.away.normal) / steps, 1.75);
-  EXPECT_GT(rate(coarse.away.H, fine.away.H) / steps, 1.45);
+  EXPECT_GT(convergence_rate(before.away.normal, fine.away.normal), 1.8);
+  EXPECT_GT(convergence_rate(before.away.H, fine.away.H), 1.8);
+  EXPECT_GT(convergence_rate(before.away.rms_H, fine.away.rms_H), 1.9);
+  EXPECT_GT(convergence_rate(coarse.away.normal, fine.away.normal) / steps, 1.75);
+  EXPECT_GT(convergence_rate(coarse.away.H, fine.away.H) / steps, 1.45);
   // Near the centre the max does not converge: it is the same O(1) value at every level,
   // asserted to 5 % of the value measured at h = 1/64 (the levels differ by < 1.5 %). The
   // band is two-sided on purpose: the rates above hold for any stationary C1 scheme, and
@@ -314,15 +318,15 @@ TEST_P(IrregularGeometryGmshDisc, ErrorsFallAtMeasuredRates) {
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     const Level &a = levels[k], &b = levels[k + 1];
     SCOPED_TRACE("s = " + std::to_string(a.h) + " -> " + std::to_string(b.h));
-    EXPECT_GT(rate(a.all.position, b.all.position), 1.6);
-    EXPECT_GT(rate(a.all.rms_position, b.all.rms_position), 1.8);
-    EXPECT_GT(rate(a.all.normal, b.all.normal), 0.6);
-    EXPECT_GT(rate(a.all.rms_normal, b.all.rms_normal), 1.3);
-    EXPECT_GT(rate(a.all.rms_H, b.all.rms_H), 0.25);
+    EXPECT_GT(convergence_rate(a.all.position, b.all.position), 1.6);
+    EXPECT_GT(convergence_rate(a.all.rms_position, b.all.rms_position), 1.8);
+    EXPECT_GT(convergence_rate(a.all.normal, b.all.normal), 0.6);
+    EXPECT_GT(convergence_rate(a.all.rms_normal, b.all.rms_normal), 1.3);
+    EXPECT_GT(convergence_rate(a.all.rms_H, b.all.rms_H), 0.25);
   }
   const Level &coarse = levels.front(), &fine = levels.back();
-  EXPECT_GT(rate(coarse.all.position, fine.all.position) / 2.0, 1.75);
-  EXPECT_GT(rate(coarse.all.rms_H, fine.all.rms_H) / 2.0, 0.4);
+  EXPECT_GT(convergence_rate(coarse.all.position, fine.all.position) / 2.0, 1.75);
+  EXPECT_GT(convergence_rate(coarse.all.rms_H, fine.all.rms_H) / 2.0, 0.4);
   // Bounded, not converging: max |H error| at every size below 0.3 (sphere), 0.45 (cylinder).
   for (const Level& l : levels) EXPECT_LT(l.all.H, surface == Surface::Sphere ? 0.3 : 0.45);
 }

@@ -16,9 +16,12 @@
 #include "libshell/subdivision/element_patches.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
 #include "libshell/subdivision/triangle_quadrature.hpp"
+#include "tests/support/convergence_rate.hpp"
 
 namespace growshell {
 namespace {
+
+using test_support::convergence_rate;
 
 struct GeometryErrors {
   double position = 0.0, normal = 0.0, mean_curvature = 0.0, gaussian_curvature = 0.0;
@@ -28,8 +31,8 @@ struct GeometryErrors {
 /// surface described by its closest-point radius error, exact normal and curvatures.
 /// Elements for which `skip(control)` is true are left out.
 template <class Exact>
-GeometryErrors measure(const TriangleMesh& mesh, const Exact& exact,
-                       const std::function<bool(const LoopPatch&)>& skip = {}) {
+GeometryErrors measure_geometry_errors(const TriangleMesh& mesh, const Exact& exact,
+                                       const std::function<bool(const LoopPatch&)>& skip = {}) {
   const MeshTopology topology(mesh);
   const ElementPatches patches = build_element_patches(topology);
   GeometryErrors err;
@@ -47,8 +50,6 @@ GeometryErrors measure(const TriangleMesh& mesh, const Exact& exact,
   return err;
 }
 
-double rate(double coarse, double fine) { return std::log2(coarse / fine); }
-
 TEST(LimitSurfaceGeometry, PlanarControlMeshGivesExactlyThatPlane) {
   StripMeshOptions o;
   TriangleMesh mesh = make_strip_mesh(o);
@@ -56,7 +57,7 @@ TEST(LimitSurfaceGeometry, PlanarControlMeshGivesExactlyThatPlane) {
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
     mesh.vertices(v, 2) = 0.3 * mesh.vertices(v, 0) - 0.2 * mesh.vertices(v, 1) + 0.1;
   const Eigen::Vector3d n = Eigen::Vector3d(-0.3, 0.2, 1.0).normalized();
-  const GeometryErrors e = measure(mesh, [&](const Eigen::Vector3d& x) {
+  const GeometryErrors e = measure_geometry_errors(mesh, [&](const Eigen::Vector3d& x) {
     const double d = (x.z() - 0.3 * x.x() + 0.2 * x.y() - 0.1) * n.z();
     return std::make_tuple(d, n, 0.0, 0.0);
   });
@@ -83,7 +84,7 @@ TEST(LimitSurfaceGeometry, CylinderErrorsFallQuadratically) {
     }
     // Axis along y through (0, *, rho); outward normal points away from the axis, and with
     // the mesh's orientation the limit normal points towards the axis: H = +1/(2 rho).
-    errors.push_back(measure(mesh, [&](const Eigen::Vector3d& x) {
+    errors.push_back(measure_geometry_errors(mesh, [&](const Eigen::Vector3d& x) {
       const Eigen::Vector3d radial(x.x(), 0.0, x.z() - rho);
       const double r = radial.norm();
       return std::make_tuple(r - rho, Eigen::Vector3d(-radial / r), 0.5 / rho, 0.0);
@@ -93,9 +94,9 @@ TEST(LimitSurfaceGeometry, CylinderErrorsFallQuadratically) {
     std::printf("cylinder cells_x %d: position %.3e normal %.3e H %.3e K %.3e\n", 16 << k,
                 errors[k + 1].position, errors[k + 1].normal, errors[k + 1].mean_curvature,
                 errors[k + 1].gaussian_curvature);
-    EXPECT_GT(rate(errors[k].position, errors[k + 1].position), 1.9);
-    EXPECT_GT(rate(errors[k].normal, errors[k + 1].normal), 1.9);
-    EXPECT_GT(rate(errors[k].mean_curvature, errors[k + 1].mean_curvature), 1.9);
+    EXPECT_GT(convergence_rate(errors[k].position, errors[k + 1].position), 1.9);
+    EXPECT_GT(convergence_rate(errors[k].normal, errors[k + 1].normal), 1.9);
+    EXPECT_GT(convergence_rate(errors[k].mean_curvature, errors[k + 1].mean_curvature), 1.9);
   }
   // The sampled cylinder's limit surface sits l^2 / (8 rho)-ish inside it: 8.1e-5 at l = 1/64.
   EXPECT_LT(errors.back().position, 2e-4 * rho);
@@ -131,8 +132,8 @@ TEST(LimitSurfaceGeometry, SphereErrorsFallQuadratically) {
       const double r = x.norm();
       return std::make_tuple(r - rho, Eigen::Vector3d(x / r), -1.0 / rho, 1.0 / (rho * rho));
     };
-    all.push_back(measure(mesh, sphere));
-    away.push_back(measure(mesh, sphere, [&](const LoopPatch& patch) {
+    all.push_back(measure_geometry_errors(mesh, sphere));
+    away.push_back(measure_geometry_errors(mesh, sphere, [&](const LoopPatch& patch) {
       const auto& control = patch.control;
       const Eigen::Vector3d centroid =
           (planar.vertices.row(control[3]) + planar.vertices.row(control[6]) +
@@ -158,21 +159,23 @@ TEST(LimitSurfaceGeometry, SphereErrorsFallQuadratically) {
   }
   for (std::size_t k = 0; k + 1 < all.size(); ++k) {
     // Measured rates 1.98, 1.99, 1.99 (position) and 1.49, 1.52, 1.51 (normal).
-    EXPECT_GT(rate(all[k].position, all[k + 1].position), 1.9);
-    EXPECT_GT(rate(all[k].normal, all[k + 1].normal), 1.4);
+    EXPECT_GT(convergence_rate(all[k].position, all[k + 1].position), 1.9);
+    EXPECT_GT(convergence_rate(all[k].normal, all[k + 1].normal), 1.4);
     // Away from the corners the set of measured elements changes a little with refinement
     // (elements cross the 0.25 R circle), so consecutive rates scatter: measured 1.86, 2.18,
     // 1.98 (normal), 2.18, 1.64, 2.01 (H), 2.44, 1.62, 1.99 (K). The overall rate below is
     // the stable measure.
-    EXPECT_GT(rate(away[k].normal, away[k + 1].normal), 1.5);
-    EXPECT_GT(rate(away[k].mean_curvature, away[k + 1].mean_curvature), 1.5);
-    EXPECT_GT(rate(away[k].gaussian_curvature, away[k + 1].gaussian_curvature), 1.5);
+    EXPECT_GT(convergence_rate(away[k].normal, away[k + 1].normal), 1.5);
+    EXPECT_GT(convergence_rate(away[k].mean_curvature, away[k + 1].mean_curvature), 1.5);
+    EXPECT_GT(convergence_rate(away[k].gaussian_curvature, away[k + 1].gaussian_curvature), 1.5);
   }
   // Average rate from 4 to 32 rings: measured 2.01 (normal), 1.94 (H), 2.02 (K).
   const double steps = static_cast<double>(away.size() - 1);
-  EXPECT_GT(rate(away.front().normal, away.back().normal) / steps, 1.9);
-  EXPECT_GT(rate(away.front().mean_curvature, away.back().mean_curvature) / steps, 1.9);
-  EXPECT_GT(rate(away.front().gaussian_curvature, away.back().gaussian_curvature) / steps, 1.9);
+  EXPECT_GT(convergence_rate(away.front().normal, away.back().normal) / steps, 1.9);
+  EXPECT_GT(convergence_rate(away.front().mean_curvature, away.back().mean_curvature) / steps, 1.9);
+  EXPECT_GT(
+      convergence_rate(away.front().gaussian_curvature, away.back().gaussian_curvature) / steps,
+      1.9);
   // The corner defect stays bounded (measured max |H error| 0.75 at 32 rings).
   EXPECT_LT(all.back().mean_curvature, 0.8);
 }
@@ -193,14 +196,14 @@ TEST(LimitSurfaceGeometry, EqualAngleRingDiscHasNonConvergingCurvatureOnTheSpoke
       const double s = r > 0 ? std::sin(r) / r : 1.0;
       mesh.vertices.row(v) << s * X, s * Y, std::cos(r);
     }
-    h_error.push_back(measure(mesh, [](const Eigen::Vector3d& x) {
+    h_error.push_back(measure_geometry_errors(mesh, [](const Eigen::Vector3d& x) {
                         const double r = x.norm();
                         return std::make_tuple(r - 1.0, Eigen::Vector3d(x / r), -1.0, 1.0);
                       }).mean_curvature);
     std::printf("equal-angle disc rings %d: H %.3e\n", rings, h_error.back());
   }
   EXPECT_GT(h_error[1], 0.05);
-  EXPECT_LT(rate(h_error[0], h_error[1]), 0.2);
+  EXPECT_LT(convergence_rate(h_error[0], h_error[1]), 0.2);
 }
 
 // Log-polar annulus (make_annulus_mesh) lifted onto the cone z = r tan(beta): a smooth map of
@@ -222,7 +225,7 @@ TEST(LimitSurfaceGeometry, AnnulusConeErrorsFallQuadratically) {
     for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
       mesh.vertices(v, 2) = std::hypot(mesh.vertices(v, 0), mesh.vertices(v, 1)) * std::tan(beta);
     }
-    errors.push_back(measure(mesh, [&](const Eigen::Vector3d& x) {
+    errors.push_back(measure_geometry_errors(mesh, [&](const Eigen::Vector3d& x) {
       const double theta = std::atan2(x.y(), x.x());
       const Eigen::Vector3d n(-std::sin(beta) * std::cos(theta), -std::sin(beta) * std::sin(theta),
                               std::cos(beta));
@@ -240,10 +243,11 @@ TEST(LimitSurfaceGeometry, AnnulusConeErrorsFallQuadratically) {
   // Measured rates 2.05, 1.99, 1.98 (position), 2.08, 2.01, 1.99 (normal), 2.01, 1.98, 1.97
   // (H), 1.94, 1.94, 1.96 (K); 48 layers: H error 2.3e-4 against H = 0.15 .. 0.74.
   for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
-    EXPECT_GT(rate(errors[k].position, errors[k + 1].position), 1.8);
-    EXPECT_GT(rate(errors[k].normal, errors[k + 1].normal), 1.8);
-    EXPECT_GT(rate(errors[k].mean_curvature, errors[k + 1].mean_curvature), 1.8);
-    EXPECT_GT(rate(errors[k].gaussian_curvature, errors[k + 1].gaussian_curvature), 1.8);
+    EXPECT_GT(convergence_rate(errors[k].position, errors[k + 1].position), 1.8);
+    EXPECT_GT(convergence_rate(errors[k].normal, errors[k + 1].normal), 1.8);
+    EXPECT_GT(convergence_rate(errors[k].mean_curvature, errors[k + 1].mean_curvature), 1.8);
+    EXPECT_GT(convergence_rate(errors[k].gaussian_curvature, errors[k + 1].gaussian_curvature),
+              1.8);
   }
 }
 
