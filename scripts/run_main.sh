@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup_debian.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGROWSHELL_BUILD_EXAMPLES=ON
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DGROWSHELL_BUILD_EXAMPLES=ON -DGROWSHELL_UNITY_BUILD=ON
 cmake --build build -j"$(nproc)" --target growshell_driver
 out=out/cone_h004
 resume=()

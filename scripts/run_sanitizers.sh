@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 fuzz_seconds="${FUZZ_SECONDS:-30}"
-cmake --preset fuzz -DGROWSHELL_BUILD_TESTS=ON >/dev/null
+cmake --preset fuzz -DGROWSHELL_BUILD_TESTS=ON -DGROWSHELL_UNITY_BUILD=ON >/dev/null
 tests=(tests_core tests_io tests_mesh tests_subdivision tests_energy tests_assembly tests_studies)
 fuzzers=(fuzz_scene_parser fuzz_saved_state fuzz_mesh_readers)
 cmake --build build-fuzz -j"$(nproc)" --target "${tests[@]}" "${fuzzers[@]}"
