@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
@@ -36,6 +37,7 @@
 #include "studies/ground_state_exchange.hpp"
 #include "studies/hard_contact_check.hpp"
 #include "studies/pattern_orientation_check.hpp"
+#include "studies/pattern_phase.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/scene_arclength_corrector.hpp"
 #include "studies/scene_contact_penalty.hpp"
@@ -55,7 +57,7 @@ const std::vector<std::string> kContactStudyColumns = {"phi_e",         "E_stret
                                                        "n_negative",    "dE_dphi",
                                                        "arclength",     "corrector_iterations",
                                                        "s4_defect",     "chord_up",
-                                                       "chord_down"};
+                                                       "chord_down",    "phase_force"};
 
 constexpr const char* kConeDir = "cone";
 
@@ -105,6 +107,15 @@ std::function<bool(const BranchSample&, const BranchSample&)> s4_breaking_step(
   };
 }
 
+/// The phase condition of a two-fold cone traced in the full space: its fold pattern's
+/// orientation about the axis at `start` (studies/pattern_phase.hpp), held so that the corners
+/// of the faceted contact surface cannot turn the nearly free pattern (docs/contact.md, "The
+/// pattern's turn in the full space").
+Eigen::VectorXd cone_phase_functional(const ShellModel& model, const Eigen::VectorXd& start,
+                                      int folds) {
+  return pattern_phase_functional(model, start, start, folds);
+}
+
 std::string fixed(double v, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << v;
@@ -139,6 +150,7 @@ class EconeContactRun {
   void trace_compared_modes();
   void wind_up();
   void measure_energy_ratios();
+  void report_phase_forces();
   BranchRecord& record(EconeBranch which) {
     return which == EconeBranch::Symmetric ? *symmetric_ : *skewed_;
   }
@@ -366,6 +378,13 @@ void EconeContactRun::set_up_contact() {
   options_.skewed_down_ends_at_fold = true;
   options_.skewed_fold_approach_tolerance = kFoldApproachTolerance;
   options_.skewed_accept_step = s4_breaking_step(symmetry());
+  if (st.phase_condition) {
+    const ShellModel& model = *model_;
+    const int folds = scene_.continuation.mode;
+    options_.skewed_phase_functional = [&model, folds](const Eigen::VectorXd& start) {
+      return cone_phase_functional(model, start, folds);
+    };
+  }
   // Down to the cone's maximum of E_b-hat at most: the skewed cone's lower end lies between.
   options_.skewed_min = results_.phi_max.value_or(start_.parameter - 1.0);
   options_.skew_search_at = st.skew_search_at.value_or(std::numeric_limits<double>::quiet_NaN());
@@ -534,12 +553,17 @@ double EconeContactRun::record_sample(const char* branch, BranchRecord& r,
                 branch, s.sample.parameter, s.stretching_energy, s.bending_energy,
                 s.penalty_energy, s.normalized_bending, s.sample.negative_eigenvalues, gamma,
                 s.active_pairs, defect, s.sample.corrector_iterations);
+  if (!std::isnan(s.phase_force)) {
+    const std::size_t used = std::strlen(line);
+    std::snprintf(line + used, sizeof line - used, "  phase force %.2e", s.phase_force);
+  }
   say(line);
-  r.append_row(
-      {s.sample.parameter, s.stretching_energy, s.bending_energy, s.penalty_energy,
-       s.normalized_bending, s.current_area, s.min_distance, static_cast<double>(s.active_pairs),
-       force, gamma, static_cast<double>(s.sample.negative_eigenvalues), s.energy_slope,
-       s.sample.arclength, static_cast<double>(s.sample.corrector_iterations), defect, up, down});
+  r.append_row({s.sample.parameter, s.stretching_energy, s.bending_energy, s.penalty_energy,
+                s.normalized_bending, s.current_area, s.min_distance,
+                static_cast<double>(s.active_pairs), force, gamma,
+                static_cast<double>(s.sample.negative_eigenvalues), s.energy_slope,
+                s.sample.arclength, static_cast<double>(s.sample.corrector_iterations), defect, up,
+                down, s.phase_force});
   r.save_state(s.sample, fingerprint_);
   r.commit();
   return defect;
@@ -812,6 +836,35 @@ void EconeContactRun::trace_turned() {
   }
 }
 
+/// With study.phase_condition: the largest force the phase condition took up on the skewed and
+/// turned cones (branch.csv's phase_force), as a warning where it exceeds the corrector's force
+/// tolerance, since those states are then equilibria only up to that load.
+void EconeContactRun::report_phase_forces() {
+  if (!scene_.study.phase_condition) return;
+  const double tolerance = options_.contact.arclength.gradient_tolerance;
+  for (const auto& [name, record] :
+       {std::pair{"skewed", skewed_.get()}, std::pair{"turned", turned_.get()}}) {
+    if (!record) continue;
+    double largest = 0.0;
+    std::size_t held = 0;
+    for (std::size_t i = 0; i < record->rows(); ++i) {
+      const double f = record->value(i, "phase_force");
+      if (std::isnan(f)) continue;
+      largest = std::max(largest, f);
+      ++held;
+    }
+    if (held == 0 || largest <= tolerance) continue;
+    std::ostringstream w;
+    w << "phase condition: the " << name << " cone's pattern was held with forces up to "
+      << std::setprecision(3) << largest << " N (branch.csv's phase_force), "
+      << std::setprecision(2) << largest / tolerance
+      << " times the corrector's force tolerance: its states are equilibria of the discrete "
+         "problem only up to that load";
+    results_.warnings.push_back(w.str());
+    say("# warning: " + w.str());
+  }
+}
+
 /// Stage 5's two traces from the turned state at phi0, into DIR/turned (a fresh record).
 EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   turned_ = std::make_unique<BranchRecord>(dir_ + "/turned", kContactStudyColumns,
@@ -829,6 +882,9 @@ EconeStageRecord::Turned EconeContactRun::trace_turned_branch(double phi0) {
   o.arclength.parameter_max = options_.symmetric_end;
   o.arclength.max_steps = options_.max_steps_per_branch;
   o.arclength.accept_step = s4_breaking_step(symmetry());
+  // Where it is traced in the full space, its pattern's orientation held if the scene asks.
+  if (scene_.study.phase_condition && !o.symmetric_subspace)
+    o.phase_functional = cone_phase_functional(*model_, turned_start_, scene_.continuation.mode);
   const std::vector<Eigen::Index> pins = rigid_pins_for_state(*model_, turned_start_, pinned_, o);
   const double threshold = scene_.study.symmetry_threshold;
   EconeStageRecord::Turned t;
@@ -1284,6 +1340,7 @@ EconeContactResults EconeContactRun::run() {
   trace_compared_modes();
   wind_up();
   measure_energy_ratios();
+  report_phase_forces();
 
   EconeContactResults& r = results_;
   r.thickness = h_;
@@ -1331,7 +1388,12 @@ Scene econe_contact_cone_scene(const Scene& scene) {
   return cone;
 }
 
-std::string econe_contact_record_file() { return std::string(kConeDir) + "/record.json"; }
+std::string econe_contact_record_file() {
+  // Appended rather than operator+ on a temporary, on which GCC 12 warns (-Warray-bounds).
+  std::string path = kConeDir;
+  path.append("/record.json");
+  return path;
+}
 
 void check_econe_contact_directory(const std::string& directory, ExistingOutput existing) {
   check_output_directory(directory, existing, "study", econe_contact_record_file());

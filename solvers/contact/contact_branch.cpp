@@ -13,6 +13,8 @@
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/equivariant_pairs.hpp"
 #include "solvers/continuation/elastic_energy_slope.hpp"
+#include "solvers/continuation/phase_condition_trace.hpp"
+#include "solvers/continuation/phase_conditioned_family.hpp"
 #include "solvers/continuation/subspace_branch_trace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 
@@ -225,6 +227,19 @@ ContactBranchTrace trace_contact_branch(
     throw std::invalid_argument("ContactBranchOptions::symmetric_subspace is for " +
                                 std::to_string(options.symmetric_subspace->full_dimension()) +
                                 " unknowns, the model has " + std::to_string(model.dimension()));
+  if (options.phase_functional.size() > 0) {
+    if (options.phase_functional.size() != model.dimension())
+      throw std::invalid_argument("ContactBranchOptions::phase_functional needs " +
+                                  std::to_string(model.dimension()) + " entries, it has " +
+                                  std::to_string(options.phase_functional.size()));
+    const double norm = options.phase_functional.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm))
+      throw std::invalid_argument(
+          "ContactBranchOptions::phase_functional must be finite and not vanish");
+    if (options.symmetric_subspace)
+      throw std::invalid_argument(
+          "ContactBranchOptions: phase_functional and symmetric_subspace cannot both be set");
+  }
   ContactBranchTrace out;
   std::vector<Eigen::Index> segment_fixed = fixed_dofs;
   const ArclengthOptions& arc = options.arclength;
@@ -357,6 +372,12 @@ ContactBranchTrace trace_contact_branch(
       auto td = Clock::now();
       ContactBranchSample described = describe(model, &penalty, s, pairs, proxy, options);
       described.segment = segment;
+      if (options.phase_functional.size() > 0) {
+        Eigen::VectorXd g;
+        family.evaluate(s.x, s.parameter, &g, nullptr);
+        described.phase_force =
+            std::abs(phase_multiplier(g, options.phase_functional.normalized(), segment_fixed));
+      }
       out.cost.sample_seconds += seconds_since(td);
       out.last = std::move(described);
       have_sample = true;
@@ -371,6 +392,11 @@ ContactBranchTrace trace_contact_branch(
         trace = trace_branch_in_subspace(family, *subspace, start_x, start_phi, start_direction,
                                          start_direction_parameter, segment_fixed, segment_options,
                                          on_segment_sample, on_special, events, on_event);
+      } else if (options.phase_functional.size() > 0) {
+        trace = trace_branch_with_phase_condition(
+            family, options.phase_functional, start_x, start_phi, start_direction,
+            start_direction_parameter, segment_fixed, segment_options, on_segment_sample,
+            on_special, events, on_event);
       } else {
         trace = trace_branch_along(family, start_x, start_phi, start_direction,
                                    start_direction_parameter, segment_fixed, segment_options,

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,6 +96,14 @@ struct ContactBranchOptions {
   /// does not converge within the travel or settle ends as before, the message saying why.
   /// Unset: the trace ends at once.
   std::optional<NewtonOptions> start_relaxation;
+  /// If not empty (one entry per unknown), every segment is traced with the phase condition
+  /// c . x = c . x_start held by a multiplier (trace_branch_with_phase_condition), e.g. the fold
+  /// pattern's orientation about the axis (studies/pattern_phase.hpp): on a mesh without the
+  /// pattern's symmetry the pattern's turn is nearly free once few pairs hold it, and the
+  /// corners of the faceted contact surface, not the shell, then decide where the branch folds.
+  /// The samples report the force the condition takes up (ContactBranchSample::phase_force).
+  /// Not with symmetric_subspace, whose mirrors hold the pattern already.
+  Eigen::VectorXd phase_functional;
   /// If set (a subspace of the model's unknowns), the branch is traced in it
   /// (SymmetricSubspaceFamily): the continuation cannot leave the symmetric states, so it
   /// follows a symmetric branch through the branch points where it loses stability to
@@ -134,6 +143,10 @@ struct ContactBranchSample {
   ContactCandidates pairs;
   Eigen::VectorXd forces;
   double min_distance = 0.0;  ///< over the segment's pairs (m); +infinity without pairs
+  /// |mu| (N), the multiplier of the unit phase functional that holds the state on the phase
+  /// condition (ContactBranchOptions::phase_functional): the size of the force the condition
+  /// takes up, to be read against the corrector's force tolerance. NaN without a condition.
+  double phase_force = std::numeric_limits<double>::quiet_NaN();
   int active_pairs = 0;       ///< pairs with a positive force
   int segment = 0;            ///< which segment produced the sample
 };

@@ -190,6 +190,8 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
     // Off the branch point by h_c / 4 at the mode's largest entry: far enough for the corrector
     // to stay off the symmetric branch, close enough to land on the bifurcating one.
     const double offset = 0.25 * h_c / mode.cwiseAbs().maxCoeff();
+    if (options.skewed_phase_functional)
+      skewed_options.phase_functional = options.skewed_phase_functional(bp.x + offset * mode);
     out.skewed_up = trace_contact_branch(
         model, proxy, bp.x + offset * mode, bp.parameter, mode, 0.0, pins, skewed_options,
         on_skewed_sample(up_energy, up_negative), on_skewed_special);
@@ -310,6 +312,8 @@ EconeBranchResult trace_econe_branches(const ShellModel& model, const ContactPro
         else
           note(mismatch);
       }
+      if (options.skewed_phase_functional && !skewed_options.symmetric_subspace)
+        skewed_options.phase_functional = options.skewed_phase_functional(best);
       // Downwards until the branch ends at a fold; the part beyond it comes back up, and the
       // trace stops when that part reaches the relaxed state's phi_e again (or, with
       // skewed_down_ends_at_fold, at the fold).

@@ -73,6 +73,11 @@ struct EconeBranchOptions {
   /// that has its symmetry to a tenth of the contact distance in some frame; from one that
   /// has not, in the full space, with a note. The stability index stays the full Hessian's.
   std::shared_ptr<const SymmetricSubspace> skewed_subspace;
+  /// If set, the skewed branch's traces in the full space hold the phase condition this returns
+  /// for their start state (ContactBranchOptions::phase_functional), e.g. the fold pattern's
+  /// orientation: on a mesh without the cone's mirrors the pattern's turn is nearly free once
+  /// few pairs hold it. Not applied where the skewed branch is traced in skewed_subspace.
+  std::function<Eigen::VectorXd(const Eigen::VectorXd& start)> skewed_phase_functional;
   bool trace_skewed = true;  ///< false: the symmetric branch only
   SkewedStart skewed_start = SkewedStart::Top;
   /// Top: the symmetric state pushed and relaxed is the first sample at or beyond this phi_e

@@ -57,6 +57,10 @@ BranchTrace trace_branch_with_phase_condition(
     if (options.stability_index) return options.stability_index(strip(s));
     return bordered_count.at(s.x, s.parameter) - 1;
   };
+  if (options.accept_step)
+    o.accept_step = [&](const BranchSample& from, const BranchSample& to) {
+      return options.accept_step(strip(from), strip(to));
+    };
   std::vector<BranchEvent> state_events = events;
   for (BranchEvent& e : state_events)
     e.value = [&, value = e.value](const BranchSample& s) { return value(strip(s)); };

@@ -16,6 +16,8 @@
 //  - grow_with_contact: every state through contact a strict minimum (reduced Lagrangian count
 //    0), no pair closer than h - h/20; a path split at a step and grown on from its last
 //    state gives the same states (what a resumed winding relies on);
+//  - with a phase condition, c . x keeps its start value over every segment, and each sample's
+//    phase_force is the multiplier recomputed from the gradient (NaN without a condition);
 //  - bad options are rejected naming the field.
 //
 // Scene: a coarse graded disc (8 rings, R = 1 m, h = 0.06 m, Y = 1e4 Pa, nu = 0.3) grown on
@@ -47,6 +49,7 @@
 #include "solvers/contact/contact_stability.hpp"
 #include "solvers/contact/econe_branches.hpp"
 #include "solvers/continuation/growth_path.hpp"
+#include "solvers/continuation/phase_conditioned_family.hpp"
 #include "solvers/continuation/symmetric_subspace.hpp"
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "solvers/stability/lowest_eigenpairs.hpp"
@@ -898,6 +901,58 @@ TEST(ContactGrowth, BadOptionsAreRejectedByName) {
   }
 }
 
+// ContactBranchOptions::phase_functional: every segment holds c . x at the value it had at the
+// trace's start (each segment starts on the previous one's hyperplane), and each sample
+// reports the force that holds it there, recomputed here from the gradient; without a
+// functional that force is NaN.
+TEST(ContactBranch, APhaseConditionHoldsItsValueOverEverySegmentAndReportsItsForce) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  const double phi0 = GrownDisc::kStart;
+  // The out-of-plane displacement's sin(2 theta) component, weighted by the radius: zero
+  // where the pattern has a mirror on the x axis, changed to first order by its turn.
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(x.size());
+  const Eigen::VectorXd& X = d.model.reference_positions();
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v)
+    c(3 * v + 2) = std::hypot(X(3 * v), X(3 * v + 1)) *
+                   std::sin(2.0 * std::atan2(X(3 * v + 1), X(3 * v)) + 0.3);
+  ContactBranchOptions o = d.options();
+  o.arclength.max_steps = 5;
+  o.steps_per_segment = 2;
+  o.phase_functional = c;
+  std::vector<ContactBranchSample> held;
+  const ContactBranchTrace t =
+      trace_contact_branch(d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0,
+                           d.pinned, o, [&](const ContactBranchSample& s) { held.push_back(s); });
+  EXPECT_EQ(t.steps, 5) << t.message;
+  EXPECT_GE(t.cost.segments, 3);
+  ASSERT_EQ(held.size(), 6u);
+  const double value = c.dot(x);
+  const Eigen::VectorXd unit = c.normalized();
+  double largest = 0.0;
+  for (const ContactBranchSample& s : held) {
+    EXPECT_NEAR(c.dot(s.sample.x), value, 1e-12 * c.norm()) << "at phi_e " << s.sample.parameter;
+    Eigen::VectorXd g;
+    d.model.evaluate(s.sample.x, s.sample.parameter, &g, nullptr);
+    const double mu = phase_multiplier(g, unit, d.pinned);
+    EXPECT_NEAR(s.phase_force, std::abs(mu), 1e-9 * std::max(1.0, std::abs(mu)));
+    // The gradient is mu c on the free dofs: an equilibrium up to the condition's force.
+    for (const Eigen::Index i : d.pinned) g(i) = 0.0;
+    Eigen::VectorXd free_unit = unit;
+    for (const Eigen::Index i : d.pinned) free_unit(i) = 0.0;
+    EXPECT_LT((g + mu * free_unit).lpNorm<Eigen::Infinity>(), 10 * o.arclength.gradient_tolerance);
+    largest = std::max(largest, s.phase_force);
+  }
+  // The functional is not the pattern's own phase (its offset 0.3), so it holds a real force.
+  EXPECT_GT(largest, 10 * o.arclength.gradient_tolerance);
+  // Without a condition the samples say there is none.
+  o.phase_functional.resize(0);
+  o.arclength.max_steps = 1;
+  trace_contact_branch(
+      d.model, d.proxy, x, phi0, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) { EXPECT_TRUE(std::isnan(s.phase_force)); });
+}
+
 TEST(ContactBranch, BadOptionsAreRejectedByName) {
   GrownDisc& d = disc();
   const Eigen::VectorXd x = d.model.reference_positions();
@@ -925,6 +980,15 @@ TEST(ContactBranch, BadOptionsAreRejectedByName) {
   o = d.options();
   o.repin_above_condition = -1.0;
   expect_message(o, "repin_above_condition");
+  o = d.options();
+  o.phase_functional = Eigen::VectorXd::Ones(x.size() - 1);
+  expect_message(o, "phase_functional");
+  o.phase_functional = Eigen::VectorXd::Zero(x.size());
+  expect_message(o, "phase_functional");
+  o.phase_functional = Eigen::VectorXd::Ones(x.size());
+  o.symmetric_subspace =
+      std::make_shared<const SymmetricSubspace>(two_mirror_subspace(d.model, 1e-9));
+  expect_message(o, "phase_functional");
   o = d.options();
   o.repin_above_condition = 20.0;
   try {

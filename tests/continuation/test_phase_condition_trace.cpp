@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -121,7 +122,9 @@ TEST(PhaseConditionedFamily, RejectsABadFunctional) {
 }
 
 /// The circle branch from (1, 0) at lambda = 1 to lambda = 3, held on y = 0.
-BranchTrace trace_ring(RingFamily& ring, std::vector<BranchSample>& samples) {
+BranchTrace trace_ring(
+    RingFamily& ring, std::vector<BranchSample>& samples,
+    std::function<bool(const BranchSample& from, const BranchSample& to)> accept_step = {}) {
   const Eigen::Index n = ring.dimension();
   Eigen::VectorXd x0 = Eigen::VectorXd::Zero(n);
   x0(0) = 1.0;
@@ -136,6 +139,7 @@ BranchTrace trace_ring(RingFamily& ring, std::vector<BranchSample>& samples) {
   options.max_step = 0.2;
   options.parameter_max = 3.0;
   options.gradient_tolerance = 1e-11;
+  options.accept_step = std::move(accept_step);
   return trace_branch_with_phase_condition(ring, functional, x0, 1.0, direction, 1.0, {}, options,
                                            [&](const BranchSample& s) { samples.push_back(s); });
 }
@@ -179,6 +183,28 @@ TEST(PhaseConditionTrace, TheMultiplierIsTheForceThatBreaksTheSymmetry) {
     EXPECT_NEAR(g(0), 0.0, 1e-10);
     EXPECT_NEAR(phase_multiplier(g, Eigen::Vector4d(0, 1, 0, 0), {}), -tilt * s.x(0), 1e-10);
   }
+}
+
+TEST(PhaseConditionTrace, TheStepTestSeesStatesWithoutTheMultiplier) {
+  // ArclengthOptions::accept_step is the caller's test of its own states (e.g. a symmetry
+  // measure that needs the model's unknowns): it must not see the multiplier appended.
+  RingFamily ring(2, 1e-3);
+  std::vector<BranchSample> plain, tested;
+  const BranchTrace reference = trace_ring(ring, plain);
+  int calls = 0, wrong_sizes = 0;
+  const BranchTrace trace =
+      trace_ring(ring, tested, [&](const BranchSample& from, const BranchSample& to) {
+        ++calls;
+        for (const BranchSample* s : {&from, &to})
+          if (s->x.size() != 4 || s->tangent_state.size() != 4) ++wrong_sizes;
+        return true;
+      });
+  EXPECT_GT(calls, 5);
+  EXPECT_EQ(wrong_sizes, 0);
+  // A test that accepts every step leaves the trace as it is.
+  ASSERT_EQ(tested.size(), plain.size());
+  for (std::size_t i = 0; i < plain.size(); ++i) EXPECT_EQ(tested[i].parameter, plain[i].parameter);
+  EXPECT_EQ(trace.message, reference.message);
 }
 
 TEST(PhaseMultiplier, IgnoresThePinnedDofs) {
