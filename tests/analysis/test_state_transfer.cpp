@@ -107,7 +107,9 @@ TEST(StateTransfer, ACurvedStateComesBackToWithinTheSmoothingOfTheSubdivision) {
     for (const int v : rings.sheet_vertices())
       worst = std::max(worst, (back - x).segment<3>(3 * v).norm());
     EXPECT_GT(worst, 1e-6);  // limit points, not the control points themselves
-    if (previous > 0.0) EXPECT_NEAR(previous / worst, 4.0, 1.0) << previous << " -> " << worst;
+    if (previous > 0.0) {
+      EXPECT_NEAR(previous / worst, 4.0, 1.0) << previous << " -> " << worst;
+    }
     previous = worst;
   }
 }
