@@ -107,10 +107,10 @@ std::function<bool(const BranchSample&, const BranchSample&)> s4_breaking_step(
   };
 }
 
-/// The phase condition of a two-fold cone traced in the full space: its fold pattern's
-/// orientation about the axis at `start` (studies/pattern_phase.hpp), held so that the corners
-/// of the faceted contact surface cannot turn the nearly free pattern (docs/contact.md, "The
-/// pattern's turn in the full space").
+/// The phase condition of a cone with `folds` folds traced in the full space: its fold
+/// pattern's orientation about the axis at `start` (studies/pattern_phase.hpp), held so that
+/// the corners of the faceted contact surface cannot turn the nearly free pattern
+/// (docs/contact.md, "The pattern's turn in the full space").
 Eigen::VectorXd cone_phase_functional(const ShellModel& model, const Eigen::VectorXd& start,
                                       int folds) {
   return pattern_phase_functional(model, start, start, folds);
