@@ -845,15 +845,12 @@ void EconeContactRun::report_phase_forces() {
   for (const auto& [name, record] :
        {std::pair{"skewed", skewed_.get()}, std::pair{"turned", turned_.get()}}) {
     if (!record) continue;
-    double largest = 0.0;
-    std::size_t held = 0;
+    double largest = 0.0;  // stays 0 where no row holds a condition (NaN)
     for (std::size_t i = 0; i < record->rows(); ++i) {
       const double f = record->value(i, "phase_force");
-      if (std::isnan(f)) continue;
-      largest = std::max(largest, f);
-      ++held;
+      if (!std::isnan(f)) largest = std::max(largest, f);
     }
-    if (held == 0 || largest <= tolerance) continue;
+    if (largest <= tolerance) continue;
     std::ostringstream w;
     w << "phase condition: the " << name << " cone's pattern was held with forces up to "
       << std::setprecision(3) << largest << " N (branch.csv's phase_force), "

@@ -240,6 +240,10 @@ ContactBranchTrace trace_contact_branch(
       throw std::invalid_argument(
           "ContactBranchOptions: phase_functional and symmetric_subspace cannot both be set");
   }
+  // The unit functional whose multiplier each sample reports as its phase force.
+  const Eigen::VectorXd phase_unit = options.phase_functional.size() > 0
+                                         ? Eigen::VectorXd(options.phase_functional.normalized())
+                                         : Eigen::VectorXd();
   ContactBranchTrace out;
   std::vector<Eigen::Index> segment_fixed = fixed_dofs;
   const ArclengthOptions& arc = options.arclength;
@@ -372,11 +376,10 @@ ContactBranchTrace trace_contact_branch(
       auto td = Clock::now();
       ContactBranchSample described = describe(model, &penalty, s, pairs, proxy, options);
       described.segment = segment;
-      if (options.phase_functional.size() > 0) {
+      if (phase_unit.size() > 0) {
         Eigen::VectorXd g;
         family.evaluate(s.x, s.parameter, &g, nullptr);
-        described.phase_force =
-            std::abs(phase_multiplier(g, options.phase_functional.normalized(), segment_fixed));
+        described.phase_force = std::abs(phase_multiplier(g, phase_unit, segment_fixed));
       }
       out.cost.sample_seconds += seconds_since(td);
       out.last = std::move(described);
