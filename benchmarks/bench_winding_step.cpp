@@ -25,6 +25,7 @@
 #include "solvers/contact/contact_growth_path.hpp"
 #include "studies/econe_winding_options.hpp"
 #include "studies/saved_state.hpp"
+#include "studies/scene_contact_penalty.hpp"
 
 namespace growshell {
 namespace {
@@ -53,7 +54,7 @@ int run(int argc, char** argv) {
   const Scene scene = read_scene(dir + "/scene.json");
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const std::uint64_t fingerprint = scene_model_fingerprint(scene);
-  const ContactProxy proxy = make_contact_proxy(model, 1);
+  const ContactProxy proxy = scene_contact_proxy(scene, model);
   const std::vector<std::filesystem::path> saved = saved_state_files(dir + "/wound");
   if (static_cast<int>(saved.size()) <= from)
     throw std::invalid_argument(dir + "/wound holds " + std::to_string(saved.size()) +

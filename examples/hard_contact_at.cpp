@@ -24,6 +24,7 @@
 #include "libshell/io/scene.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/hard_contact_check.hpp"
+#include "studies/scene_contact_penalty.hpp"
 
 namespace {
 
@@ -68,7 +69,7 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   const Scene scene = read_scene(examples::branch_scene_file(dir));
   const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
   const BranchSample state = examples::nearest_branch_state(dir, phi, scene, model.dimension());
-  const ContactProxy proxy = make_contact_proxy(model, 1);
+  const ContactProxy proxy = scene_contact_proxy(scene, model);
   std::printf("# %s: phi_e = %.6f, %lld unknowns; Ipopt under gap >= contact distance\n",
               dir.c_str(), state.parameter, static_cast<long long>(model.dimension()));
   const HardContactCheck check = check_hard_contact(scene, model, proxy, state, print_level);

@@ -26,6 +26,7 @@
 #include "solvers/newton/rigid_motion_pinning.hpp"
 #include "studies/atomic_file.hpp"
 #include "studies/pattern_orientation_check.hpp"
+#include "studies/scene_contact_penalty.hpp"
 
 namespace {
 
@@ -66,7 +67,7 @@ int run(const std::string& dir, examples::CommandLine& cl) {
   Scene checked = scene;
   checked.study.orientation_check_turns = turns_deg;
   if (tolerance != -1.0) checked.study.tolerance = tolerance;
-  const ContactProxy proxy = make_contact_proxy(model, 1);
+  const ContactProxy proxy = scene_contact_proxy(scene, model);
   const PatternOrientationCheckOptions o = scene_orientation_check_options(checked, model, proxy);
   const Eigen::VectorXd& X = model.reference_positions();
   const std::vector<Eigen::Index> pins = mirror_axis_pinned_dofs(

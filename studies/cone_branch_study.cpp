@@ -31,6 +31,7 @@
 #include "studies/pattern_phase.hpp"
 #include "studies/saved_state.hpp"
 #include "studies/scene_arclength_corrector.hpp"
+#include "studies/scene_contact_penalty.hpp"
 #include "studies/special_point_modes.hpp"
 #include "studies/study_directory.hpp"
 #include "studies/turn_free_stability_index.hpp"
@@ -589,7 +590,7 @@ std::optional<ConeBranchResults::Orientation> ConeBranchRun::check_orientation(d
       nearest_saved_state(out_dir_, phi, model_->dimension(), model_fingerprint_);
   if (!nearest) return std::nullopt;
   const BranchSample& state = *nearest;
-  const ContactProxy proxy = make_contact_proxy(*model_, 1);
+  const ContactProxy proxy = scene_contact_proxy(scene_, *model_);
   const PatternOrientationCheckOptions o = scene_orientation_check_options(scene_, *model_, proxy);
   PatternOrientationCheck check;
   try {

@@ -312,7 +312,7 @@ void EconeContactRun::set_up_contact() {
       Eigen::Map<const Eigen::Matrix<double, -1, 3, Eigen::RowMajor>>(X.data(), X.size() / 3, 3);
   // The cone study's pins (on the mesh's mirror axes), so that symmetric states stay symmetric.
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
-  proxy_ = std::make_unique<ContactProxy>(make_contact_proxy(*model_, 1));
+  proxy_ = std::make_unique<ContactProxy>(scene_contact_proxy(scene_, *model_));
 
   options_.contact = scene_contact_penalty(scene_, *proxy_);
   ContactBranchOptions& c = options_.contact;
@@ -421,6 +421,8 @@ void EconeContactRun::set_up_contact() {
   results_.contact_distance = c.contact_distance;
   results_.exclusion_radius = c.exclusion_radius;
   results_.penalty_stiffness = c.stiffness;
+  results_.proxy_segments_per_edge = scene_.study.contact_proxy_segments;
+  results_.proxy_vertices = proxy_->num_vertices();
   say("# stage 2: contact distance " + fixed(c.contact_distance, 5) + " m, exclusion radius " +
       fixed(c.exclusion_radius, 5) + " m (" + fixed(c.exclusion_radius / h_, 3) +
       " h), penalty k = " + fixed(c.stiffness, 1) + " N/m, proxy of " +

@@ -4,6 +4,10 @@
 
 namespace growshell {
 
+ContactProxy scene_contact_proxy(const Scene& scene, const ShellModel& model) {
+  return make_contact_proxy(model, scene.study.contact_proxy_segments);
+}
+
 ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProxy& proxy) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   ContactBranchOptions c;

@@ -13,6 +13,10 @@
 
 namespace growshell {
 
+/// The contact proxy a scene asks for: the limit surface of `model` sampled with
+/// study.contact_proxy_segments segments per element edge (make_contact_proxy).
+ContactProxy scene_contact_proxy(const Scene& scene, const ShellModel& model);
+
 /// ContactBranchOptions with its penalty fields set from `scene` (h its thickness at the
 /// centre): contact_distance physics.contact_distance (auto: h), exclusion_radius
 /// resolved_exclusion_radius, candidate_margin h, stiffness study.penalty_stiffness_factor

@@ -215,6 +215,10 @@ struct EconeContactResults {
   double contact_distance = 0.0;   ///< mid-surface distance at which the sheets touch
   double exclusion_radius = 0.0;   ///< physics.contact_exclusion_radius, resolved
   double penalty_stiffness = 0.0;  ///< k (N/m)
+  /// The contact proxy the penalty acts on: segments per element edge
+  /// (study.contact_proxy_segments) and its number of vertices.
+  int proxy_segments_per_edge = 1;
+  long long proxy_vertices = 0;
   /// From the contact-free cone (stage 1): its first branch point, and its maximum of E_b-hat.
   std::optional<double> phi_branch, phi_max, eb_hat_max;
   /// Where the trace with contact started: the cone's last state.

@@ -36,6 +36,9 @@ using Json = nlohmann::ordered_json;
 
 /// The thickest a sheet may be, as a fraction of its width (R, or R - R_i for a ring).
 constexpr double kMaxThicknessFraction = 0.25;
+/// Largest study.contact_proxy_segments: 64 proxy triangles per element, about 50 times the
+/// pairs of the default (1) and beyond what a trace can afford on a mesh of the default size.
+constexpr int kMaxSceneProxySegments = 8;
 
 /// Shortest text that reads back as the same double, so that error messages never show a
 /// rejected value rounded onto its bound (0.50000001 printed as "0.5").
@@ -423,6 +426,9 @@ const Field kFields[] = {
   {"study.contact_vertex_triangles",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_vertex_triangles = read_enum(v, k, kContactVertexTriangleNames); },
    [](const Scene& s) { return Json(enum_name(kContactVertexTriangleNames, s.study.contact_vertex_triangles)); }},
+  {"study.contact_proxy_segments",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_proxy_segments = read_int(v, k); },
+   [](const Scene& s) { return Json(s.study.contact_proxy_segments); }},
   {"study.penalty_stiffness_factor",
    [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},
@@ -703,6 +709,10 @@ void validate_scene(const Scene& scene) {
   require_at_least(st.contact_stall_iterations, 0, "study.contact_stall_iterations");
   require_at_least(st.contact_growth_pause, 0, "study.contact_growth_pause");
   require_positive(st.penalty_stiffness_factor, "study.penalty_stiffness_factor");
+  if (st.contact_proxy_segments < 1 || st.contact_proxy_segments > kMaxSceneProxySegments)
+    fail("study.contact_proxy_segments = " + std::to_string(st.contact_proxy_segments) +
+         " must be in [1, " + std::to_string(kMaxSceneProxySegments) +
+         "]: segments per element edge of the contact proxy (n^2 proxy triangles per element)");
   for (std::size_t i = 0; i < st.orientation_check_turns.size(); ++i) {
     const std::string key = "study.orientation_check_turns[" + std::to_string(i) + "]";
     const double turn = st.orientation_check_turns[i];

@@ -310,6 +310,11 @@ struct SceneStudy {
   /// econe_contact only: the penalty stiffness k = F Y l^2 / h, l the contact proxy's spacing
   /// (docs/contact.md, "Penalty stiffness"); this is F (> 0).
   double penalty_stiffness_factor = 10.0;
+  /// econe_contact, and cone_branch's orientation check: segments per element edge of the
+  /// contact proxy, the sampled limit surface whose vertex-triangle pairs the penalty holds
+  /// (make_contact_proxy; in [1, 8]). n segments give n^2 proxy triangles per element and a
+  /// spacing l / n, and the stiffness k = F Y (l / n)^2 / h follows it.
+  int contact_proxy_segments = 1;
   /// econe_contact only: solve the relaxed skewed state again with Ipopt under the hard
   /// constraints gap >= contact distance, and report the difference in results.json. Off by
   /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both

@@ -990,6 +990,23 @@ TEST(Scene, ContactStepControlKeysHaveTheirDefaultsAndBadCountsAreRefused) {
             std::string::npos);
 }
 
+TEST(Scene, ContactProxySegmentsIsReadRoundTripsAndOutOfRangeCountsAreRefused) {
+  EXPECT_EQ(default_scene().study.contact_proxy_segments, 1);
+  const Scene s =
+      parse_scene(R"({"study": {"kind": "econe_contact", "contact_proxy_segments": 3}})", "test");
+  EXPECT_EQ(s.study.contact_proxy_segments, 3);
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.contact_proxy_segments, 3);
+  using test_support::error_of;
+  for (const char* bad : {"0", "-1", "9", "1.5", "\"two\""}) {
+    std::string text = R"({"study": {"kind": "econe_contact", "contact_proxy_segments": )";
+    text += bad;
+    text += "}}";
+    EXPECT_NE(error_of([&] { parse_scene(text, "t"); }).find("study.contact_proxy_segments"),
+              std::string::npos)
+        << bad;
+  }
+}
+
 TEST(Scene, ContactVertexTrianglesIsReadRoundTripsAndABadNameIsRefused) {
   EXPECT_EQ(default_scene().study.contact_vertex_triangles,
             SceneContactVertexTriangles::NearestAtBuild);

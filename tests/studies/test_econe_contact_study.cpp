@@ -28,6 +28,8 @@ EconeContactResults sample_results() {
   r.contact_distance = 0.04;
   r.exclusion_radius = 0.32;
   r.penalty_stiffness = 3329.0;
+  r.proxy_segments_per_edge = 2;
+  r.proxy_vertices = 7057;
   r.phi_branch = 0.0171;
   r.phi_max = 4.066;
   r.eb_hat_max = 4.27;
@@ -59,6 +61,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
                                              "contact_distance",
                                              "exclusion_radius",
                                              "penalty_stiffness",
+                                             "contact_proxy",
                                              "phi_branch",
                                              "phi_max",
                                              "eb_hat_max",
@@ -108,6 +111,8 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_TRUE(j["ipopt"].is_null());  // not checked
   EXPECT_EQ(j["symmetric_csv"], "symmetric/branch.csv");
   EXPECT_EQ(j["mesh"]["unknowns"].get<long long>(), 5691);
+  EXPECT_EQ(j["contact_proxy"]["segments_per_edge"].get<int>(), 2);
+  EXPECT_EQ(j["contact_proxy"]["vertices"].get<long long>(), 7057);
 
   EconeContactResults checked = sample_results();
   checked.ipopt = EconeIpoptCheck{true, "Optimal Solution Found", 1e-7, 0.02, 1.01};
