@@ -8,7 +8,8 @@
 #  - first contact between 6.50 and 6.60 (measured 6.5416; rings and gmsh_d4 at size_slope 0.1:
 #    6.549 and 6.547);
 #  - the symmetric branch loses stability between 6.92 and 7.07 (measured 6.964; 7.030 and
-#    7.028 at size_slope 0.1);
+#    7.028 at size_slope 0.1 with the default proxy; over mesh, proxy and family the value
+#    spreads over 6.965-7.123, docs/contact.md, "The proxy's density");
 #  - a skewed cone is found at 7.2, lower than the symmetric one by more than 0.3 % (measured
 #    0.84 %), without S4 (defect above 1e-3 on all of its samples; measured 0.010 to 0.039);
 #  - traced down, the skewed branch crosses the symmetric one between 5.55 and 5.70 (measured
