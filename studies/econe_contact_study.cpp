@@ -421,7 +421,7 @@ void EconeContactRun::set_up_contact() {
   results_.contact_distance = c.contact_distance;
   results_.exclusion_radius = c.exclusion_radius;
   results_.penalty_stiffness = c.stiffness;
-  results_.proxy_segments_per_edge = scene_.study.contact_proxy_segments;
+  results_.proxy_segments_per_edge = proxy_->segments_per_edge;
   results_.proxy_vertices = proxy_->num_vertices();
   say("# stage 2: contact distance " + fixed(c.contact_distance, 5) + " m, exclusion radius " +
       fixed(c.exclusion_radius, 5) + " m (" + fixed(c.exclusion_radius / h_, 3) +

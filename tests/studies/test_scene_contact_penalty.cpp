@@ -42,16 +42,15 @@ TEST(SceneContactPenalty, StiffnessFollowsTheProxysSpacing) {
   const ShellModel model(scene_mesh(one), scene_model_settings(one));
   const ContactProxy p1 = scene_contact_proxy(one, model);
   const ContactProxy p2 = scene_contact_proxy(two, model);
-  const double k1 = scene_contact_penalty(one, p1).stiffness;
-  const double k2 = scene_contact_penalty(two, p2).stiffness;
+  const ContactBranchOptions c1 = scene_contact_penalty(one, p1);
+  const ContactBranchOptions c2 = scene_contact_penalty(two, p2);
+  const double k1 = c1.stiffness, k2 = c2.stiffness;
   const double Y = one.material.youngs_modulus, h = 0.08;
   EXPECT_DOUBLE_EQ(k1, 10.0 * contact_stiffness_scale(Y, h, proxy_mean_edge_length(p1)));
   EXPECT_DOUBLE_EQ(k2, 10.0 * contact_stiffness_scale(Y, h, proxy_mean_edge_length(p2)));
   // Halving the spacing quarters k (to the unevenness of the lattice on the limit surface).
   EXPECT_NEAR(k2 / k1, 0.25, 0.02);
   // Everything else of the penalty is the proxy's business only through k.
-  const ContactBranchOptions c1 = scene_contact_penalty(one, p1);
-  const ContactBranchOptions c2 = scene_contact_penalty(two, p2);
   EXPECT_EQ(c1.contact_distance, c2.contact_distance);
   EXPECT_EQ(c1.exclusion_radius, c2.exclusion_radius);
   EXPECT_EQ(c1.candidate_margin, c2.candidate_margin);
