@@ -9,10 +9,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 fuzz_seconds="${FUZZ_SECONDS:-30}"
-cmake --preset fuzz -DGROWSHELL_BUILD_TESTS=ON -DGROWSHELL_UNITY_BUILD=ON >/dev/null
 tests=(tests_core tests_io tests_mesh tests_subdivision tests_energy tests_assembly tests_studies)
 fuzzers=(fuzz_scene_parser fuzz_saved_state fuzz_mesh_readers)
-cmake --build build-fuzz -j"$(nproc)" --target "${tests[@]}" "${fuzzers[@]}"
+# Built as one group target, so that the executables compile side by side (named one by one on
+# the command line, the Makefile generator builds them in turn: about 70 s longer on 2 cores).
+group="$(IFS=';'; echo "${tests[*]};${fuzzers[*]}")"
+cmake --preset fuzz -DGROWSHELL_BUILD_TESTS=ON -DGROWSHELL_UNITY_BUILD=ON \
+  -DGROWSHELL_TARGET_GROUP="$group" >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target growshell_target_group
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
