@@ -104,7 +104,7 @@ Studies (study.kind):
                scene keys: those of cone_branch, physics.contact_exclusion_radius,
                physics.contact_distance, study.skew_search_at, study.contact_max_step,
                study.penalty_stiffness_factor, study.contact_proxy_segments,
-               study.ipopt_check, study.hard_contact_at,
+               study.contact_surface, study.ipopt_check, study.hard_contact_at,
                study.hard_contact_branches, study.wind_to, study.wind_shapes_at,
                study.compare_modes (docs/guide/econe_contact.md)
                writes DIR/results.json (first contact, phi_e^crit both ways, the skewed cone,

@@ -314,7 +314,7 @@ void EconeContactRun::set_up_contact() {
   pinned_ = mirror_axis_pinned_dofs(P, model_->sheet_vertices(), model_->settings().growth.center);
   proxy_ = std::make_unique<ContactProxy>(scene_contact_proxy(scene_, *model_));
 
-  options_.contact = scene_contact_penalty(scene_, *proxy_);
+  options_.contact = scene_contact_penalty(scene_, *model_, *proxy_);
   ContactBranchOptions& c = options_.contact;
   c.arclength.initial_step = st.contact_max_step / 4;
   c.arclength.max_step = st.contact_max_step;
@@ -423,6 +423,7 @@ void EconeContactRun::set_up_contact() {
   results_.penalty_stiffness = c.stiffness;
   results_.proxy_segments_per_edge = proxy_->segments_per_edge;
   results_.proxy_vertices = proxy_->num_vertices();
+  results_.contact_surface = c.gap.limit_surface ? "limit_surface" : "proxy_triangles";
   say("# stage 2: contact distance " + fixed(c.contact_distance, 5) + " m, exclusion radius " +
       fixed(c.exclusion_radius, 5) + " m (" + fixed(c.exclusion_radius / h_, 3) +
       " h), penalty k = " + fixed(c.stiffness, 1) + " N/m, proxy of " +

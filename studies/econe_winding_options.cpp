@@ -12,7 +12,7 @@ ContactGrowthOptions econe_winding_options(const Scene& scene, const ShellModel&
                                            const ContactProxy& proxy) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   ContactGrowthOptions growth;
-  growth.contact = scene_contact_penalty(scene, proxy);
+  growth.contact = scene_contact_penalty(scene, model, proxy);
   growth.contact.symmetric_subspace = nullptr;
   // Every triangle near a proxy vertex, not only the nearest: as the sheet winds, layers slide
   // over layers, and a vertex between two of them must be held by both.

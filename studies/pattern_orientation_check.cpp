@@ -60,7 +60,7 @@ PatternOrientationCheckOptions scene_orientation_check_options(const Scene& scen
   PatternOrientationCheckOptions o;
   for (const double t : scene.study.orientation_check_turns)
     o.turns.push_back(t * std::numbers::pi / 180.0);
-  o.contact = scene_contact_penalty(scene, proxy);
+  o.contact = scene_contact_penalty(scene, model, proxy);
   o.relaxation = scene_penalty_relaxation(scene, model);
   o.relaxation.max_step_inf_norm = 0.25 * h;
   o.relaxation.max_iterations = 1000;

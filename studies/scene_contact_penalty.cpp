@@ -1,6 +1,7 @@
 #include "studies/scene_contact_penalty.hpp"
 
 #include "libshell/contact/contact_penalty.hpp"
+#include "libshell/contact/limit_surface_contact.hpp"
 
 namespace growshell {
 
@@ -8,7 +9,8 @@ ContactProxy scene_contact_proxy(const Scene& scene, const ShellModel& model) {
   return make_contact_proxy(model, scene.study.contact_proxy_segments);
 }
 
-ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProxy& proxy) {
+ContactBranchOptions scene_contact_penalty(const Scene& scene, const ShellModel& model,
+                                           const ContactProxy& proxy) {
   const double h = thickness_at_radius(scene.thickness, 0.0, scene.geometry.radius);
   ContactBranchOptions c;
   c.contact_distance = scene.physics.contact_distance.value_or(h);
@@ -19,6 +21,8 @@ ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProx
       contact_stiffness_scale(scene.material.youngs_modulus, h, proxy_mean_edge_length(proxy));
   c.violation_tolerance = 0.25 * h;
   c.repin_above_condition = 20.0;
+  if (scene.study.contact_surface == SceneContactSurface::LimitSurface)
+    c.gap.limit_surface = make_limit_surface_contact(model, c.exclusion_radius);
   return c;
 }
 

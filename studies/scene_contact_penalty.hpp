@@ -22,9 +22,12 @@ ContactProxy scene_contact_proxy(const Scene& scene, const ShellModel& model);
 /// resolved_exclusion_radius, candidate_margin h, stiffness study.penalty_stiffness_factor
 /// Y l^2 / h with l the spacing of `proxy` (contact_stiffness_scale), violation_tolerance h / 4,
 /// and repin_above_condition 20 (rim vertices pinned on the reference come round next to the
-/// pinning axis as the cone grows). The step control and the stability index are left at their
-/// defaults for the caller.
-ContactBranchOptions scene_contact_penalty(const Scene& scene, const ContactProxy& proxy);
+/// pinning axis as the cone grows), and the pairs' surface study.contact_surface (the limit
+/// surface of `model` with that exclusion radius, or the proxy's triangles). The step control
+/// and the stability index are left at their defaults for the caller. `proxy` must be
+/// `model`'s.
+ContactBranchOptions scene_contact_penalty(const Scene& scene, const ShellModel& model,
+                                           const ContactProxy& proxy);
 
 /// Newton settings of a relaxation of shell + the scene's penalty (the econe_contact study's
 /// skewed search, its winding and the orientation check, before their own bounds): the force

@@ -73,7 +73,8 @@ std::string econe_contact_results_json(const EconeContactResults& r) {
   j["exclusion_radius"] = r.exclusion_radius;
   j["penalty_stiffness"] = r.penalty_stiffness;
   j["contact_proxy"] = {{"segments_per_edge", r.proxy_segments_per_edge},
-                        {"vertices", r.proxy_vertices}};
+                        {"vertices", r.proxy_vertices},
+                        {"surface", r.contact_surface}};
   j["phi_branch"] = json_number_or_null(r.phi_branch);
   j["phi_max"] = json_number_or_null(r.phi_max);
   j["eb_hat_max"] = json_number_or_null(r.eb_hat_max);

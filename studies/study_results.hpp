@@ -219,6 +219,9 @@ struct EconeContactResults {
   /// (study.contact_proxy_segments) and its number of vertices.
   int proxy_segments_per_edge = 1;
   long long proxy_vertices = 0;
+  /// What the penalty's pairs measure the distance to (study.contact_surface):
+  /// "proxy_triangles" or "limit_surface".
+  std::string contact_surface = "proxy_triangles";
   /// From the contact-free cone (stage 1): its first branch point, and its maximum of E_b-hat.
   std::optional<double> phi_branch, phi_max, eb_hat_max;
   /// Where the trace with contact started: the cone's last state.

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 namespace growshell {
 
@@ -45,6 +46,44 @@ double mean_reference_edge_length(const ContactProxy& proxy) {
   return n > 0 ? sum / static_cast<double>(n) : 0.0;
 }
 
+/// Throws unless the limit surface fits the proxy and the pairs are vertex-triangle pairs.
+void check_limit_surface(const LimitSurfaceContact& limit, const ContactProxy& proxy,
+                         const ContactCandidates& pairs) {
+  if (pairs.edge_edge.rows() > 0)
+    throw_invalid(std::to_string(pairs.edge_edge.rows()) +
+                  " edge-edge pairs: on the limit surface only vertex-triangle pairs are "
+                  "measured (select no edge-edge pairs)");
+  if (proxy.triangle_element.size() != proxy.triangles.rows())
+    throw_invalid("the proxy has no element for each triangle (triangle_element)");
+  const auto elements = limit.patches.patch.size();
+  if (limit.neighbourhoods.size() != elements)
+    throw_invalid("the limit surface has " + std::to_string(limit.neighbourhoods.size()) +
+                  " neighbourhoods for " + std::to_string(elements) + " elements");
+  if (proxy.triangle_element.size() > 0 &&
+      proxy.triangle_element.maxCoeff() >= static_cast<int>(elements))
+    throw_invalid("the proxy names element " + std::to_string(proxy.triangle_element.maxCoeff()) +
+                  ", outside the limit surface's " + std::to_string(elements) + " elements");
+}
+
+/// The elements around `element` against which proxy vertex p is measured: its neighbourhood
+/// less the elements with a proxy vertex within the exclusion radius of p in the reference
+/// (`element` itself always stays).
+std::vector<int> surface_candidates(const LimitSurfaceContact& limit, const ContactProxy& proxy,
+                                    int p, int element) {
+  const Eigen::Index n = proxy.segments_per_edge;
+  const Eigen::RowVector3d at = proxy.reference_positions.row(p);
+  std::vector<int> candidates;
+  for (int e : limit.neighbourhoods[static_cast<std::size_t>(element)]) {
+    bool near = false;
+    for (Eigen::Index row = e * n * n; row < (e + 1) * n * n && !near; ++row)
+      for (int i = 0; i < 3; ++i)
+        near = near || (proxy.reference_positions.row(proxy.triangles(row, i)) - at).norm() <
+                           limit.exclusion_radius;
+    if (!near || e == element) candidates.push_back(e);
+  }
+  return candidates;
+}
+
 }  // namespace
 
 const char* to_string(ContactPairType type) {
@@ -78,6 +117,10 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
   }
   map_ = proxy.map;
   map_.makeCompressed();
+  triangles_ = proxy.triangles;
+  segments_per_edge_ = proxy.segments_per_edge;
+  const LimitSurfaceContact* limit = options_.limit_surface.get();
+  if (limit != nullptr) check_limit_surface(*limit, proxy, pairs);
 
   const double mean_edge = mean_reference_edge_length(proxy);
   const Eigen::Index num_pairs = pairs.size();
@@ -94,6 +137,7 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
                     std::to_string(num_vertices) + ")");
   };
   pairs_.reserve(static_cast<std::size_t>(num_pairs));
+  std::unordered_map<int, std::vector<int>> kept_elements;  // limit surface: per proxy vertex
   vertex_triangle_count_ = pairs.vertex_triangle.rows();
   for (Eigen::Index r = 0; r < pairs.vertex_triangle.rows(); ++r) {
     const int p = pairs.vertex_triangle(r, 0);
@@ -114,8 +158,26 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
         throw_invalid(where + ": proxy vertex " + std::to_string(p) +
                       " is a corner of proxy triangle " + std::to_string(t));
     }
+    if (limit != nullptr) {
+      pair.element = proxy.triangle_element(t);
+      // A pair of the same vertex whose triangle lies in this one's neighbourhood, and this
+      // one's in its, measures the same foot: keep the first.
+      const std::vector<int>& around =
+          limit->neighbourhoods[static_cast<std::size_t>(pair.element)];
+      std::vector<int>& kept = kept_elements[p];
+      if (std::any_of(kept.begin(), kept.end(),
+                      [&](int e) { return std::binary_search(around.begin(), around.end(), e); }))
+        continue;
+      kept.push_back(pair.element);
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(map_, 3 * p); it; ++it) {
+        pair.point.vertex.push_back(static_cast<int>(it.col() / 3));
+        pair.point.weight.push_back(it.value());
+      }
+      pair.candidates = surface_candidates(*limit, proxy, p, pair.element);
+    }
     pairs_.push_back(pair);
   }
+  vertex_triangle_count_ = static_cast<Eigen::Index>(pairs_.size());
   for (Eigen::Index r = 0; r < pairs.edge_edge.rows(); ++r) {
     const int a = pairs.edge_edge(r, 0);
     const int b = pairs.edge_edge(r, 1);
@@ -150,11 +212,31 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
     pairs_.push_back(pair);
   }
 
+  build_patterns(limit);
+}
+
+void ContactGapConstraints::build_patterns(const LimitSurfaceContact* limit) {
   // ---- stencils: union of the map's columns in the rows of the pair's proxy vertices ----
   dof_begin_.assign(1, 0);
   std::vector<int> stencil;
   for (const Pair& pair : pairs_) {
     stencil.clear();
+    if (pair.element >= 0) {
+      // The proxy vertex's dofs and those of every element the walk may visit.
+      for (int v : pair.point.vertex)
+        for (int c = 0; c < 3; ++c) stencil.push_back(3 * v + c);
+      for (int e : pair.candidates)
+        for (int v : limit->patches.patch[static_cast<std::size_t>(e)].control)
+          for (int c = 0; c < 3; ++c) stencil.push_back(3 * v + c);
+      std::sort(stencil.begin(), stencil.end());
+      stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
+      if (!stencil.empty() && stencil.back() >= map_.cols())
+        throw_invalid("the limit surface's control points exceed the proxy map's " +
+                      std::to_string(map_.cols()) + " columns");
+      dofs_.insert(dofs_.end(), stencil.begin(), stencil.end());
+      dof_begin_.push_back(static_cast<Eigen::Index>(dofs_.size()));
+      continue;
+    }
     for (int i = 0; i < 4; ++i)
       for (int c = 0; c < 3; ++c)
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(
@@ -258,6 +340,12 @@ ContactPairType ContactGapConstraints::pair_type(Eigen::Index k) const {
   return pairs_[static_cast<std::size_t>(k)].type;
 }
 
+std::span<const int> ContactGapConstraints::pair_surface_elements(Eigen::Index k) const {
+  check_pair_index(k, "pair_surface_elements");
+  const std::vector<int>& elements = pairs_[static_cast<std::size_t>(k)].candidates;
+  return std::span<const int>(elements.data(), elements.size());
+}
+
 std::span<const int> ContactGapConstraints::pair_dofs(Eigen::Index k) const {
   check_pair_index(k, "pair_dofs");
   const auto begin = static_cast<std::size_t>(dof_begin_[static_cast<std::size_t>(k)]);
@@ -301,6 +389,7 @@ ContactPairDistance ContactGapConstraints::compute(const Eigen::Ref<const Eigen:
                                                    Eigen::Index k, bool with_gradient,
                                                    bool with_hessian) const {
   const Pair& pair = pairs_[static_cast<std::size_t>(k)];
+  if (pair.element >= 0) return compute_on_limit_surface(x, k, with_gradient, with_hessian);
   const Eigen::Matrix<double, 3, 4> y = pair_positions(x, pair);
   ContactPairDistance out;
   ContactPairGeometry& g = out.geometry;
@@ -368,6 +457,62 @@ ContactPairDistance ContactGapConstraints::compute(const Eigen::Ref<const Eigen:
   return out;
 }
 
+ContactPairDistance ContactGapConstraints::compute_on_limit_surface(
+    const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index k, bool with_gradient,
+    bool with_hessian) const {
+  const Pair& pair = pairs_[static_cast<std::size_t>(k)];
+  const LimitSurfaceContact& limit = *options_.limit_surface;
+  ContactPairDistance out;
+  ContactPairGeometry& g = out.geometry;
+  g.type = pair.type;
+  g.first = pair.first;
+  LimitSurfaceDistance d;
+  try {
+    d = limit_surface_distance(control_point_rows(x.head(map_.cols())), limit.patches, pair.point,
+                               pair.candidates, with_hessian);
+  } catch (const std::exception& e) {
+    std::ostringstream s;
+    s << "contact pair " << k << " " << describe_pair(pair.type, pair.first, pair.second)
+      << " on the limit surface: " << e.what();
+    throw_invalid(s.str());
+  }
+  // The foot's proxy triangle and its weights there: where the contact force acts on the proxy.
+  const ProxyTriangleLocation foot =
+      proxy_triangle_at(segments_per_edge_, triangles_.rows(), d.element, d.parameter);
+  g.second = foot.triangle;
+  g.vertices << pair.first, triangles_(foot.triangle, 0), triangles_(foot.triangle, 1),
+      triangles_(foot.triangle, 2);
+  g.vertex_weights << 1.0, -foot.barycentric(0), -foot.barycentric(1), -foot.barycentric(2);
+  g.distance = d.distance;
+  g.gap = d.distance - offset_;
+  g.closest_point_first = d.point;
+  g.closest_point_second = d.closest;
+  g.normal = (d.point - d.closest) / d.distance;
+  if (!(with_gradient || with_hessian)) return out;
+  // From the distance's vertex list to the pair's dofs (sorted, a superset).
+  out.on_pair_dofs = true;
+  const std::span<const int> dofs = pair_dofs(k);
+  std::vector<Eigen::Index> at(3 * d.vertices.size());
+  for (std::size_t j = 0; j < d.vertices.size(); ++j)
+    for (int c = 0; c < 3; ++c) {
+      const int dof = 3 * d.vertices[j] + c;
+      at[3 * j + static_cast<std::size_t>(c)] =
+          std::lower_bound(dofs.begin(), dofs.end(), dof) - dofs.begin();
+    }
+  const auto m = static_cast<Eigen::Index>(dofs.size());
+  out.dof_gradient = Eigen::VectorXd::Zero(m);
+  for (std::size_t a = 0; a < at.size(); ++a)
+    out.dof_gradient[at[a]] += d.gradient[static_cast<Eigen::Index>(a)];
+  if (with_hessian) {
+    out.dof_hessian = Eigen::MatrixXd::Zero(m, m);
+    for (std::size_t b = 0; b < at.size(); ++b)
+      for (std::size_t a = 0; a < at.size(); ++a)
+        out.dof_hessian(at[a], at[b]) +=
+            d.hessian(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  }
+  return out;
+}
+
 ContactPairGeometry ContactGapConstraints::pair_geometry(const Eigen::Ref<const Eigen::VectorXd>& x,
                                                          Eigen::Index k) const {
   check_pair_index(k, "pair_geometry");
@@ -392,6 +537,10 @@ void ContactGapConstraints::add_pair_gradient(Eigen::Index k, const Vector12d& l
     throw_invalid(s.str());
   }
   const Pair& pair = pairs_[static_cast<std::size_t>(k)];
+  if (pair.element >= 0)
+    throw std::logic_error("add_pair_gradient: contact pair " + std::to_string(k) +
+                           " is measured on the limit surface; its derivatives are in the dofs "
+                           "(add_pair_dof_gradient)");
   for (int i = 0; i < 4; ++i)
     for (int c = 0; c < 3; ++c)
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(map_,
@@ -400,12 +549,45 @@ void ContactGapConstraints::add_pair_gradient(Eigen::Index k, const Vector12d& l
         gradient[it.col()] += it.value() * local_gradient(3 * i + c);
 }
 
+void ContactGapConstraints::add_pair_dof_gradient(
+    Eigen::Index k, const Eigen::Ref<const Eigen::VectorXd>& dof_gradient,
+    Eigen::VectorXd& gradient) const {
+  check_pair_index(k, "add_pair_dof_gradient");
+  const std::span<const int> dofs = pair_dofs(k);
+  if (gradient.size() != dimension_ ||
+      dof_gradient.size() != static_cast<Eigen::Index>(dofs.size())) {
+    std::ostringstream s;
+    s << "add_pair_dof_gradient: " << dof_gradient.size() << " entries for the pair's "
+      << dofs.size() << " dofs, into a gradient of " << gradient.size() << " (expected "
+      << dimension_ << ")";
+    throw_invalid(s.str());
+  }
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    gradient[dofs[i]] += dof_gradient[static_cast<Eigen::Index>(i)];
+}
+
 void ContactGapConstraints::add_pair_hessian(Eigen::Index k, const Matrix12d& local_hessian,
                                              Eigen::SparseMatrix<double>& hessian_upper) const {
   check_pair_index(k, "add_pair_hessian");
+  if (pairs_[static_cast<std::size_t>(k)].element >= 0)
+    throw std::logic_error("add_pair_hessian: contact pair " + std::to_string(k) +
+                           " is measured on the limit surface; its derivatives are in the dofs "
+                           "(add_pair_dof_hessian)");
   const Eigen::Matrix<double, 12, Eigen::Dynamic> J = pair_map(k);
-  const Eigen::MatrixXd block = J.transpose() * (local_hessian * J);
+  add_pair_dof_hessian(k, J.transpose() * (local_hessian * J), hessian_upper);
+}
+
+void ContactGapConstraints::add_pair_dof_hessian(Eigen::Index k,
+                                                 const Eigen::Ref<const Eigen::MatrixXd>& block,
+                                                 Eigen::SparseMatrix<double>& hessian_upper) const {
+  check_pair_index(k, "add_pair_dof_hessian");
   const std::span<const int> dofs = pair_dofs(k);
+  if (block.rows() != static_cast<Eigen::Index>(dofs.size()) || block.cols() != block.rows()) {
+    std::ostringstream s;
+    s << "add_pair_dof_hessian: a " << block.rows() << " x " << block.cols()
+      << " block for the pair's " << dofs.size() << " dofs";
+    throw_invalid(s.str());
+  }
   const int* inner = hessian_upper.innerIndexPtr();
   const int* outer = hessian_upper.outerIndexPtr();
   double* values = hessian_upper.valuePtr();
@@ -451,13 +633,17 @@ void ContactGapConstraints::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
     const ContactPairGeometry& g = D.geometry;
     values[k] = g.mollifier * g.gap;
     if (jacobian == nullptr) continue;
+    const int* dofs = dofs_.data() + dof_begin_[static_cast<std::size_t>(k)];
+    const int* dofs_end = dofs_.data() + dof_begin_[static_cast<std::size_t>(k) + 1];
+    double* out = jacobian->valuePtr() + dof_begin_[static_cast<std::size_t>(k)];
+    if (D.on_pair_dofs) {
+      std::copy(D.dof_gradient.data(), D.dof_gradient.data() + (dofs_end - dofs), out);
+      continue;
+    }
     // Row k = J_k^T (dc/dy), scattered straight from the map's rows into the stored row
     // (whose columns are pair_dofs(k), sorted), without forming J_k.
     const Vector12d local = g.mollifier * D.gradient + g.gap * D.mollifier_gradient;
     const Pair& pair = pairs_[static_cast<std::size_t>(k)];
-    const int* dofs = dofs_.data() + dof_begin_[static_cast<std::size_t>(k)];
-    const int* dofs_end = dofs_.data() + dof_begin_[static_cast<std::size_t>(k) + 1];
-    double* out = jacobian->valuePtr() + dof_begin_[static_cast<std::size_t>(k)];
     std::fill(out, out + (dofs_end - dofs), 0.0);
     for (int i = 0; i < 4; ++i)
       for (int c = 0; c < 3; ++c)
@@ -486,6 +672,10 @@ void ContactGapConstraints::weighted_hessian(const Eigen::Ref<const Eigen::Vecto
     if (w == 0.0) continue;
     const ContactPairDistance D = compute(x, k, true, true);
     const ContactPairGeometry& g = D.geometry;
+    if (D.on_pair_dofs) {
+      add_pair_dof_hessian(k, w * D.dof_hessian, hessian_upper);
+      continue;
+    }
     // c = m (d - offset): product rule; m = 1 with zero derivatives when not mollified.
     const Vector12d& gd = D.gradient;
     const Vector12d& gm = D.mollifier_gradient;

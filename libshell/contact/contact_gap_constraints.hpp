@@ -46,9 +46,21 @@
 /// the rows of its four proxy vertices, fixed at construction: the region may change during a
 /// solve but the stencil does not. Row k of the Jacobian pattern is that stencil; the Hessian
 /// pattern is the upper triangle of the union over pairs of stencil x stencil.
+///
+/// The limit surface as the second primitive (ContactGapOptions::limit_surface). A
+/// vertex-triangle pair then measures the distance from the proxy vertex to the limit surface
+/// around the triangle's element (limit_surface_distance.hpp, walked from that element through
+/// its neighbourhood, less the vertex's neighbours on the sheet: limit_surface_contact.hpp), C1
+/// where the flat triangle's is C1 only within its regions. Its stencil is the proxy vertex's
+/// control dofs and those of every element the walk may visit, and its
+/// derivatives come straight in those dofs (ContactPairDistance::dof_gradient). Edge-edge pairs
+/// have no such form and are refused. Two pairs of one proxy vertex whose triangles lie in each
+/// other's neighbourhoods would measure the same foot twice: of such pairs only the first is
+/// kept, so count() may be below the number of candidate pairs.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -56,6 +68,8 @@
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_proxy.hpp"
 #include "libshell/contact/edge_edge_distance.hpp"
+#include "libshell/contact/limit_surface_contact.hpp"
+#include "libshell/contact/limit_surface_distance.hpp"
 #include "libshell/contact/point_triangle_distance.hpp"
 
 namespace growshell {
@@ -78,6 +92,9 @@ struct ContactGapOptions {
   /// Multiply each edge-edge constraint by the IPC mollifier of its edges (see the file
   /// comment). Vertex-triangle constraints are never mollified.
   bool mollify_edge_edge = true;
+  /// If set, vertex-triangle pairs measure the distance to this limit surface instead of to
+  /// the proxy triangle (see the file comment); it must be the proxy's model's.
+  std::shared_ptr<const LimitSurfaceContact> limit_surface;
 };
 
 /// Geometry of one contact pair at a state x: what touches what, where, and along which
@@ -136,6 +153,12 @@ struct ContactPairDistance {
   /// d2 mollifier / dy2 (1/m^2); zero unless requested, for unmollified pairs and where the
   /// mollifier is 1.
   Matrix12d mollifier_hessian = Matrix12d::Zero();
+  /// true for a pair measured on the limit surface: its derivatives are then not in the 12
+  /// proxy coordinates (gradient and hessian above stay zero) but in the control dofs
+  /// pair_dofs(k), in that order, below.
+  bool on_pair_dofs = false;
+  Eigen::VectorXd dof_gradient;  ///< d distance / dx over pair_dofs(k) (dimensionless)
+  Eigen::MatrixXd dof_hessian;   ///< d2 distance / dx2 over pair_dofs(k) (1/m), if requested
 };
 
 /// Contact gaps c_k(x) >= 0 of a fixed list of candidate pairs (see the file comment).
@@ -205,15 +228,29 @@ class ContactGapConstraints final : public InequalityConstraints {
   ContactPairDistance pair_distance(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index k,
                                     bool with_hessian) const;
 
+  /// true if vertex-triangle pairs are measured on the limit surface (see the file comment).
+  bool measures_limit_surface() const { return options_.limit_surface != nullptr; }
+  /// The elements whose limit surface pair k is measured against, sorted (empty unless
+  /// measured on the limit surface).
+  std::span<const int> pair_surface_elements(Eigen::Index k) const;
+  /// Adds `dof_gradient` (over pair_dofs(k), in that order) to `gradient` (size dimension()).
+  void add_pair_dof_gradient(Eigen::Index k, const Eigen::Ref<const Eigen::VectorXd>& dof_gradient,
+                             Eigen::VectorXd& gradient) const;
+  /// Adds the upper triangle of `block` (symmetric, over pair_dofs(k) x pair_dofs(k)) to
+  /// `hessian_upper`, which must carry hessian_pattern() (see add_pair_hessian).
+  void add_pair_dof_hessian(Eigen::Index k, const Eigen::Ref<const Eigen::MatrixXd>& block,
+                            Eigen::SparseMatrix<double>& hessian_upper) const;
   /// Adds J_k^T local_gradient to `gradient` (size dimension()), J_k = dy_k/dx the constant
   /// 12 x n map of pair k's proxy coordinates: pulls a gradient w.r.t. the pair's proxy
-  /// coordinates back to the control dofs.
+  /// coordinates back to the control dofs. Throws std::logic_error for a pair measured on the
+  /// limit surface (its derivatives are in the dofs: add_pair_dof_gradient).
   void add_pair_gradient(Eigen::Index k, const Vector12d& local_gradient,
                          Eigen::VectorXd& gradient) const;
 
   /// Adds the upper triangle of J_k^T local_hessian J_k (local_hessian symmetric) to
   /// `hessian_upper`, which must carry hessian_pattern() (not checked here: the caller checks
-  /// once per assembly, see check_hessian_structure).
+  /// once per assembly, see check_hessian_structure). Throws std::logic_error for a pair
+  /// measured on the limit surface (add_pair_dof_hessian).
   void add_pair_hessian(Eigen::Index k, const Matrix12d& local_hessian,
                         Eigen::SparseMatrix<double>& hessian_upper) const;
 
@@ -230,8 +267,15 @@ class ContactGapConstraints final : public InequalityConstraints {
     int second = -1;
     Eigen::Vector4i vertices = Eigen::Vector4i::Constant(-1);
     double mollifier_threshold = 0.0;  // eps_x (m^4) of the rest edges; 0 if not mollified
+    // Measured on the limit surface: the triangle's element, and the proxy vertex as a
+    // combination of control points.
+    int element = -1;
+    ControlPointCombination point;
+    std::vector<int> candidates;  // the elements the walk may visit (sorted)
   };
 
+  // The pairs' stencils and the Jacobian and Hessian patterns, from pairs_.
+  void build_patterns(const LimitSurfaceContact* limit);
   void check_pair_index(Eigen::Index k, const char* who) const;
   void check_x(const Eigen::Ref<const Eigen::VectorXd>& x, const char* who) const;
   // Proxy positions of the pair's four vertices, one per column (metres).
@@ -241,6 +285,9 @@ class ContactGapConstraints final : public InequalityConstraints {
   Eigen::Matrix<double, 12, Eigen::Dynamic> pair_map(Eigen::Index k) const;
   ContactPairDistance compute(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index k,
                               bool with_gradient, bool with_hessian) const;
+  ContactPairDistance compute_on_limit_surface(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                               Eigen::Index k, bool with_gradient,
+                                               bool with_hessian) const;
 
   Eigen::Index dimension_ = 0;
   double offset_ = 0.0;
@@ -251,6 +298,8 @@ class ContactGapConstraints final : public InequalityConstraints {
   std::vector<Eigen::Index> dof_begin_;  // pair k's dofs are dofs_[dof_begin_[k] .. [k + 1])
   std::vector<int> dofs_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> map_;  // proxy.map, row access
+  Eigen::MatrixX3i triangles_;  // proxy.triangles (limit-surface pairs report their foot's)
+  int segments_per_edge_ = 1;
   Eigen::SparseMatrix<double, Eigen::RowMajor> jacobian_pattern_;
   Eigen::SparseMatrix<double> hessian_pattern_;
 };

@@ -116,6 +116,16 @@ double ContactPenalty::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x,
     energy += 0.5 * k * m * depth * depth;
     if (gradient == nullptr && hessian_upper == nullptr) continue;
     const ContactPairDistance D = constraints_.pair_distance(x, pair, hessian_upper != nullptr);
+    if (D.on_pair_dofs) {
+      // On the limit surface (never mollified): P_k = (k/2) g^2, g = offset - d.
+      if (gradient != nullptr)
+        constraints_.add_pair_dof_gradient(pair, -k * depth * D.dof_gradient, *gradient);
+      if (hessian_upper != nullptr)
+        constraints_.add_pair_dof_hessian(
+            pair, k * (D.dof_gradient * D.dof_gradient.transpose() - depth * D.dof_hessian),
+            *hessian_upper);
+      continue;
+    }
     const Vector12d& gd = D.gradient;
     const Vector12d& gm = D.mollifier_gradient;
     // P_k = (k/2) m g^2 with g = offset - d, dg = -dd: product rule.

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "libshell/subdivision/closest_limit_point.hpp"
 #include "libshell/subdivision/loop_basis.hpp"
 #include "libshell/subdivision/loop_patch.hpp"
 
@@ -259,6 +261,53 @@ ProxySag proxy_sag(const ShellModel& model, const ContactProxy& proxy,
     }
   }
   return sag;
+}
+
+ProxyTriangleLocation proxy_triangle_at(const ContactProxy& proxy, int element,
+                                        const Eigen::Ref<const Eigen::Vector2d>& parameter) {
+  return proxy_triangle_at(proxy.segments_per_edge, proxy.triangles.rows(), element, parameter);
+}
+
+ProxyTriangleLocation proxy_triangle_at(int segments_per_edge, Eigen::Index triangles, int element,
+                                        const Eigen::Ref<const Eigen::Vector2d>& parameter) {
+  const int n = segments_per_edge;
+  const Eigen::Index elements = n > 0 ? triangles / (static_cast<Eigen::Index>(n) * n) : 0;
+  if (element < 0 || element >= elements)
+    throw std::invalid_argument("proxy_triangle_at: element " + std::to_string(element) +
+                                " is outside the proxy's " + std::to_string(elements) +
+                                " elements");
+  if (!parameter.allFinite())
+    throw std::invalid_argument("proxy_triangle_at: the parameter is not finite");
+  const Eigen::Vector2d vw = clamp_to_parameter_triangle(parameter);
+  // Lattice coordinates: the point lies in cell (i, j), at (fs, ft) within it.
+  const double s = n * vw.x();
+  const double t = n * vw.y();
+  const int i = std::min(static_cast<int>(std::floor(s)), n - 1);
+  const int j = std::max(0, std::min(static_cast<int>(std::floor(t)), n - 1 - i));
+  const double fs = s - i;
+  const double ft = t - j;
+  // Rows of the element's triangles before cell (i, j)'s "up" triangle (the order of
+  // make_contact_proxy: i outer, j inner, each "up" triangle followed by its "down" one if
+  // i + j < n - 1).
+  int row = 0;
+  for (int a = 0; a <= i; ++a)
+    for (int b = 0; b <= n - 1 - a; ++b) {
+      if (a == i && b == j) break;
+      row += a + b < n - 1 ? 2 : 1;
+    }
+  ProxyTriangleLocation out;
+  const Eigen::Index first = static_cast<Eigen::Index>(element) * n * n;
+  // A cell on the diagonal (i + j = n - 1) has its "up" triangle only; a point there with
+  // fs + ft above 1 by rounding lies on that triangle's far side.
+  if (fs + ft <= 1.0 || i + j == n - 1) {
+    out.triangle = static_cast<int>(first + row);
+    out.barycentric << std::max(0.0, 1.0 - fs - ft), fs, ft;
+    out.barycentric /= out.barycentric.sum();
+  } else {
+    out.triangle = static_cast<int>(first + row + 1);
+    out.barycentric << 1.0 - ft, fs + ft - 1.0, 1.0 - fs;
+  }
+  return out;
 }
 
 }  // namespace growshell

@@ -64,6 +64,25 @@ struct ContactProxy {
 /// it is < 1, or above 1000 (a bound that keeps the indices far from overflow).
 ContactProxy make_contact_proxy(const ShellModel& model, int segments_per_edge);
 
+/// Where a point of an element's parameter triangle lies on the proxy.
+struct ProxyTriangleLocation {
+  int triangle = -1;  ///< row of ContactProxy::triangles
+  /// Weights of the triangle's three corners (in its row's order) that give the point's
+  /// parameter: >= 0, summing to 1.
+  Eigen::Vector3d barycentric = Eigen::Vector3d::Zero();
+};
+
+/// The proxy triangle of element `element` that holds parameter (v, w) (clamped into the
+/// parameter triangle), with the point's weights in it. Throws std::invalid_argument for an
+/// element outside the proxy's or a non-finite parameter.
+ProxyTriangleLocation proxy_triangle_at(const ContactProxy& proxy, int element,
+                                        const Eigen::Ref<const Eigen::Vector2d>& parameter);
+
+/// The same for a proxy of `segments_per_edge` segments per element edge and `triangles`
+/// triangles in all.
+ProxyTriangleLocation proxy_triangle_at(int segments_per_edge, Eigen::Index triangles, int element,
+                                        const Eigen::Ref<const Eigen::Vector2d>& parameter);
+
 /// Proxy vertex positions at state x (metres, one row per proxy vertex): map * x reshaped.
 /// Throws std::invalid_argument if x does not have map.cols() entries.
 Eigen::MatrixX3d proxy_positions(const ContactProxy& proxy,

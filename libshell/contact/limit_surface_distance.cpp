@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "libshell/subdivision/closest_limit_point.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
@@ -36,13 +38,78 @@ Eigen::MatrixXd free_directions(int active) {
   return z;
 }
 
+/// The closest point of the candidates' surface to p, and its element (-1 if no search
+/// converged).
+struct CandidateFoot {
+  ClosestLimitPoint point;
+  int element = -1;
+};
+
+CandidateFoot closest_on_candidates(const ControlPointRows& positions,
+                                    const ElementPatches& patches, const Eigen::Vector3d& p,
+                                    const std::vector<int>& candidates) {
+  const Eigen::Index rows = positions.rows();
+  CandidateFoot found;
+  found.point.half_squared_distance = std::numeric_limits<double>::infinity();
+  // Every candidate element, each searched from its centroid; the lowest distance wins. An
+  // element's surface lies in the convex hull of its control points (the Loop weights and
+  // subdivision masks are positive and sum to one), so the distance from the point to their
+  // bounding box bounds its distance from below: elements are searched in the order of that
+  // bound, and those whose bound exceeds the best distance found are left out (the answer is
+  // the same; the searches, on irregular elements a subdivision per evaluation, are not).
+  std::vector<std::pair<double, int>> order;
+  order.reserve(candidates.size());
+  for (int e : candidates) {
+    const LoopPatch& patch = patches.patch[static_cast<std::size_t>(e)];
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d high = -low;
+    for (int v : patch.control) {
+      check_vertex(v, rows, "element");
+      if (!positions.row(v).allFinite())
+        throw std::invalid_argument("limit_surface_distance: control point " + std::to_string(v) +
+                                    " of element " + std::to_string(e) + " is not finite");
+      low = low.cwiseMin(positions.row(v).transpose());
+      high = high.cwiseMax(positions.row(v).transpose());
+    }
+    const Eigen::Vector3d outside = (low - p).cwiseMax(p - high).cwiseMax(0.0);
+    order.emplace_back(outside.norm(), e);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [bound, e] : order) {
+    // Strictly farther than the best, beyond what a tie (below) could still reach.
+    if (found.element >= 0 &&
+        bound * bound > 2.0 * found.point.half_squared_distance * (1.0 + 4.0 * kTieTolerance))
+      break;
+    const LoopPatch& patch = patches.patch[static_cast<std::size_t>(e)];
+    const ClosestLimitPoint c =
+        closest_limit_point(positions, patch, p, Eigen::Vector2d(1.0 / 3.0, 1.0 / 3.0));
+    if (!c.converged) continue;
+    bool better = found.element < 0;
+    if (!better) {
+      // Equal distances to rounding: a minimiser free inside its element before one held on
+      // a side (the foot just across that side is the free one's, and the held point differs
+      // from it to first order, though its distance only to second), then the lower element.
+      const double tie =
+          kTieTolerance * std::max(c.half_squared_distance, found.point.half_squared_distance);
+      if (c.half_squared_distance < found.point.half_squared_distance - tie)
+        better = true;
+      else if (c.half_squared_distance <= found.point.half_squared_distance + tie)
+        better = (c.active == 0) != (found.point.active == 0) ? c.active == 0 : e < found.element;
+    }
+    if (better) {
+      found.point = c;
+      found.element = e;
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
-LimitSurfaceDistance limit_surface_distance(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+LimitSurfaceDistance limit_surface_distance(const ControlPointRows& positions,
                                             const ElementPatches& patches,
                                             const ControlPointCombination& point,
-                                            const std::vector<int>& candidates,
-                                            bool with_hessian) {
+                                            const std::vector<int>& candidates, bool with_hessian) {
   if (candidates.empty())
     throw std::invalid_argument("limit_surface_distance: no candidate elements");
   if (point.vertex.empty() || point.vertex.size() != point.weight.size())
@@ -78,37 +145,9 @@ LimitSurfaceDistance limit_surface_distance(const Eigen::Ref<const Eigen::Matrix
     weight_in_r[static_cast<std::size_t>(local_index(point.vertex[k]))] += point.weight[k];
   }
 
-  ClosestLimitPoint best;
-  best.half_squared_distance = std::numeric_limits<double>::infinity();
-  for (int e : candidates) {
-    const LoopPatch& patch = patches.patch[static_cast<std::size_t>(e)];
-    for (int v : patch.control) {
-      check_vertex(v, rows, "element");
-      if (!positions.row(v).allFinite())
-        throw std::invalid_argument("limit_surface_distance: control point " +
-                                    std::to_string(v) + " of element " + std::to_string(e) +
-                                    " is not finite");
-    }
-    const ClosestLimitPoint c =
-        closest_limit_point(positions, patch, p, Eigen::Vector2d(1.0 / 3.0, 1.0 / 3.0));
-    if (!c.converged) continue;
-    // Equal distances to rounding: a minimiser free inside its element before one held on a
-    // side (the foot just across that side is the free one's, and the held point differs from
-    // it to first order, though its distance only to second), then the lower element.
-    const double tie = kTieTolerance * std::max(c.half_squared_distance,
-                                                std::isfinite(best.half_squared_distance)
-                                                    ? best.half_squared_distance
-                                                    : 0.0);
-    const bool lower = c.half_squared_distance < best.half_squared_distance - tie;
-    const bool tied = !lower && c.half_squared_distance <= best.half_squared_distance + tie;
-    const bool preferred =
-        tied && ((c.active == 0 && best.active != 0) ||
-                 ((c.active == 0) == (best.active == 0) && e < result.element));
-    if (result.element < 0 || lower || preferred) {
-      best = c;
-      result.element = e;
-    }
-  }
+  const CandidateFoot found = closest_on_candidates(positions, patches, p, candidates);
+  const ClosestLimitPoint& best = found.point;
+  result.element = found.element;
   if (result.element < 0)
     throw std::domain_error("limit_surface_distance: the closest-point search converged on none "
                             "of the " + std::to_string(candidates.size()) + " candidate elements");

@@ -8,10 +8,12 @@
 ///
 /// The point is a fixed linear combination of control points, p = sum_i w_i X_i (a sheet
 /// vertex's limit position, or any proxy vertex: a row of ContactProxy::map). Its closest
-/// point on the surface is x(xi*) = sum_a N_a(xi*) X_a of the element found by
-/// closest_limit_point over the candidate elements (the lowest distance wins; among distances
+/// point on the surface of the candidate elements is x(xi*) = sum_a N_a(xi*) X_a: each
+/// element is searched by closest_limit_point and the lowest distance wins (among distances
 /// equal to 1e-12, a minimiser free inside its element before one held on a side, then the
-/// lower element index). With r = p - x(xi*) and D = |r|^2 / 2 = min over xi:
+/// lower element index); elements whose control points' bounding box lies farther than the
+/// best distance found (the surface lies in their convex hull) are not searched. With r = p -
+/// x(xi*) and D = |r|^2 / 2 = min over xi:
 ///   - the gradient is the partial one at xi* (xi* is a minimiser): dD/dX_j = c_j r, with
 ///     c_j = w_j - N_j(xi*) the weight of control point j in r;
 ///   - the Hessian adds the change of xi*: d2D = J^T J - B^T A^-1 B, where J = dr/dX
@@ -27,6 +29,7 @@
 #include <vector>
 
 #include "libshell/subdivision/element_patches.hpp"
+#include "libshell/subdivision/limit_surface.hpp"
 
 namespace growshell {
 
@@ -52,19 +55,19 @@ struct LimitSurfaceDistance {
 };
 
 /// The distance from `point` (weights into `positions`, one row per control vertex, m) to the
-/// limit surface of the elements `candidates` of `patches`, each searched from its centroid.
-/// The Hessian is formed if `with_hessian`. Throws
+/// limit surface of the elements `candidates` of `patches` (e.g. element_neighbourhoods'),
+/// each element searched from its centroid. The Hessian is formed if `with_hessian`. Throws
 /// std::invalid_argument naming the problem for an empty candidate list, an element or vertex
-/// index out of range, weights of another length than the vertices, or a non-finite position;
+/// index out of range,
+/// weights of another length than the vertices, or a non-finite position;
 /// std::domain_error if the point lies on the surface (d at most 1e-12 of its coordinates, at
 /// the rounding of the positions, where d is not differentiable),
 /// if no candidate's search converged, or if the Hessian is asked for at a point whose closest
 /// point is degenerate (A not positive definite along the free directions: the point at or
 /// beyond a focal point of the surface).
-LimitSurfaceDistance limit_surface_distance(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+LimitSurfaceDistance limit_surface_distance(const ControlPointRows& positions,
                                             const ElementPatches& patches,
                                             const ControlPointCombination& point,
-                                            const std::vector<int>& candidates,
-                                            bool with_hessian);
+                                            const std::vector<int>& candidates, bool with_hessian);
 
 }  // namespace growshell

@@ -78,6 +78,9 @@ const NameTable<ContinuationDirection> kDirectionNames = {
     {ContinuationDirection::Forward, "forward"}, {ContinuationDirection::Backward, "backward"}};
 const NameTable<SceneCorrector> kCorrectorNames = {{SceneCorrector::Newton, "newton"},
                                                    {SceneCorrector::Chord, "chord"}};
+const NameTable<SceneContactSurface> kContactSurfaceNames = {
+    {SceneContactSurface::ProxyTriangles, "proxy_triangles"},
+    {SceneContactSurface::LimitSurface, "limit_surface"}};
 const NameTable<SceneContactVertexTriangles> kContactVertexTriangleNames = {
     {SceneContactVertexTriangles::NearestAtBuild, "nearest_at_build"},
     {SceneContactVertexTriangles::EveryNearTriangle, "every_near_triangle"}};
@@ -429,6 +432,9 @@ const Field kFields[] = {
   {"study.contact_proxy_segments",
    [](Scene& s, const Json& v, const std::string& k) { s.study.contact_proxy_segments = read_int(v, k); },
    [](const Scene& s) { return Json(s.study.contact_proxy_segments); }},
+  {"study.contact_surface",
+   [](Scene& s, const Json& v, const std::string& k) { s.study.contact_surface = read_enum(v, k, kContactSurfaceNames); },
+   [](const Scene& s) { return Json(enum_name(kContactSurfaceNames, s.study.contact_surface)); }},
   {"study.penalty_stiffness_factor",
    [](Scene& s, const Json& v, const std::string& k) { s.study.penalty_stiffness_factor = read_number(v, k); },
    [](const Scene& s) { return Json(s.study.penalty_stiffness_factor); }},

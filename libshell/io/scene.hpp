@@ -155,6 +155,12 @@ enum class ContinuationDirection {
   Backward,  ///< decreasing phi_e, down to phi_min
 };
 
+/// What a contact pair measures the distance to (docs/contact.md, "The contact surface").
+enum class SceneContactSurface {
+  ProxyTriangles,  ///< the flat triangles of the contact proxy (its sampled limit surface)
+  LimitSurface,    ///< the limit surface itself, around the pair's triangle
+};
+
 /// Which vertex-triangle pairs the contact penalty of a trace holds (docs/contact.md).
 enum class SceneContactVertexTriangles {
   NearestAtBuild,     ///< per vertex the triangle nearest where the segment's set was built
@@ -315,6 +321,10 @@ struct SceneStudy {
   /// (make_contact_proxy; in [1, 8]). n segments give n^2 proxy triangles per element and a
   /// spacing l / n, and the stiffness k = F Y (l / n)^2 / h follows it.
   int contact_proxy_segments = 1;
+  /// econe_contact, and cone_branch's orientation check: whether the penalty's pairs measure
+  /// the distance from a proxy vertex to the flat proxy triangle or to the limit surface around
+  /// it (ContactGapOptions::limit_surface). The Ipopt checks keep the proxy triangles.
+  SceneContactSurface contact_surface = SceneContactSurface::ProxyTriangles;
   /// econe_contact only: solve the relaxed skewed state again with Ipopt under the hard
   /// constraints gap >= contact distance, and report the difference in results.json. Off by
   /// default: it took over 20 minutes at 5.7k unknowns, and at phi_e^crit by energy both

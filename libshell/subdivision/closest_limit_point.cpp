@@ -53,9 +53,8 @@ struct LocalQuadratic {
   Eigen::Matrix2d hessian, metric;
 };
 
-LocalQuadratic local_quadratic(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                               const LoopPatch& patch, const Eigen::Vector3d& point,
-                               const Eigen::Vector2d& xi) {
+LocalQuadratic local_quadratic(const ControlPointRows& positions, const LoopPatch& patch,
+                               const Eigen::Vector3d& point, const Eigen::Vector2d& xi) {
   const LimitSurfacePoint s = evaluate_limit_surface(positions, patch, xi.x(), xi.y());
   LocalQuadratic q;
   q.position = s.position;
@@ -71,9 +70,8 @@ LocalQuadratic local_quadratic(const Eigen::Ref<const Eigen::MatrixX3d>& positio
   return q;
 }
 
-double half_squared_distance(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                             const LoopPatch& patch, const Eigen::Vector3d& point,
-                             const Eigen::Vector2d& xi) {
+double half_squared_distance(const ControlPointRows& positions, const LoopPatch& patch,
+                             const Eigen::Vector3d& point, const Eigen::Vector2d& xi) {
   const LimitSurfacePoint s = evaluate_limit_surface(positions, patch, xi.x(), xi.y());
   return 0.5 * (point - s.position).squaredNorm();
 }
@@ -110,8 +108,7 @@ Eigen::Vector2d clamp_to_parameter_triangle(const Eigen::Ref<const Eigen::Vector
   return snap(best);
 }
 
-ClosestLimitPoint closest_limit_point(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                      const LoopPatch& patch,
+ClosestLimitPoint closest_limit_point(const ControlPointRows& positions, const LoopPatch& patch,
                                       const Eigen::Ref<const Eigen::Vector3d>& point,
                                       const Eigen::Ref<const Eigen::Vector2d>& start) {
   if (!point.allFinite())

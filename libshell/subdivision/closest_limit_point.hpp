@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "libshell/subdivision/limit_surface.hpp"
 #include "libshell/subdivision/loop_patch.hpp"
 
 namespace growshell {
@@ -50,8 +51,7 @@ struct ClosestLimitPoint {
 /// `positions`, one row per control vertex, m), starting from parameter `start` (clamped into
 /// the triangle). Deterministic. Throws std::invalid_argument for a non-finite point or start,
 /// and whatever evaluate_patch_basis throws.
-ClosestLimitPoint closest_limit_point(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                      const LoopPatch& patch,
+ClosestLimitPoint closest_limit_point(const ControlPointRows& positions, const LoopPatch& patch,
                                       const Eigen::Ref<const Eigen::Vector3d>& point,
                                       const Eigen::Ref<const Eigen::Vector2d>& start);
 

@@ -4,8 +4,8 @@
 
 namespace growshell {
 
-LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                         const LoopPatch& patch, const PatchBasis& basis) {
+LimitSurfacePoint evaluate_limit_surface(const ControlPointRows& positions, const LoopPatch& patch,
+                                         const PatchBasis& basis) {
   Eigen::MatrixX3d X(patch.size(), 3);
   for (int i = 0; i < patch.size(); ++i) X.row(i) = positions.row(patch.control[static_cast<std::size_t>(i)]);
   LimitSurfacePoint p;
@@ -22,8 +22,8 @@ LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d
   return p;
 }
 
-LimitSurfacePoint evaluate_limit_surface(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                                         const LoopPatch& patch, double v, double w) {
+LimitSurfacePoint evaluate_limit_surface(const ControlPointRows& positions, const LoopPatch& patch,
+                                         double v, double w) {
   return evaluate_limit_surface(positions, patch, evaluate_patch_basis(patch, v, w));
 }
 

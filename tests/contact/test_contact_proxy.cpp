@@ -243,6 +243,38 @@ TEST(ContactProxy, SagFallsLikeOneOverNSquared) {
   }
 }
 
+TEST(ContactProxy, TheTriangleAtAParameterHoldsItWithItsWeights) {
+  DiscMeshOptions o;
+  o.rings = 3;
+  const ShellModel model(make_disc_mesh(o), ShellModelSettings{});
+  for (int n : {1, 2, 3, 5}) {
+    const ContactProxy proxy = make_contact_proxy(model, n);
+    const auto elements = static_cast<int>(proxy.triangles.rows() / (n * n));
+    for (int e : {0, elements - 1}) {
+      for (int a = 0; a <= 20; ++a)
+        for (int b = 0; a + b <= 20; ++b) {
+          const Eigen::Vector2d vw(a / 20.0, b / 20.0);
+          const ProxyTriangleLocation at = proxy_triangle_at(proxy, e, vw);
+          ASSERT_GE(at.triangle, e * n * n);
+          ASSERT_LT(at.triangle, (e + 1) * n * n);
+          EXPECT_GE(at.barycentric.minCoeff(), -1e-15);
+          EXPECT_NEAR(at.barycentric.sum(), 1.0, 1e-15);
+          // The weights of the triangle's lattice corners give the parameter back.
+          const auto corners = triangle_lattice(n, at.triangle - e * n * n);
+          Eigen::Vector2d back = Eigen::Vector2d::Zero();
+          for (int i = 0; i < 3; ++i)
+            back += at.barycentric(i) *
+                    Eigen::Vector2d(corners[static_cast<std::size_t>(i)][0],
+                                    corners[static_cast<std::size_t>(i)][1]) /
+                    n;
+          EXPECT_LT((back - vw).norm(), 1e-14) << "n " << n << " (v, w) " << vw.transpose();
+        }
+    }
+    EXPECT_THROW(proxy_triangle_at(proxy, elements, Eigen::Vector2d(0.2, 0.2)),
+                 std::invalid_argument);
+  }
+}
+
 TEST(ContactProxy, RejectsBadInputNamingIt) {
   DiscMeshOptions o;
   o.rings = 3;

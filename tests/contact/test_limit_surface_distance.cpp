@@ -107,7 +107,8 @@ struct DistanceFdErrors {
 };
 DistanceFdErrors distance_fd_errors(const CurvedStrip& s, const ControlPointCombination& point,
                                     const std::vector<int>& candidates) {
-  const LimitSurfaceDistance at = limit_surface_distance(s.positions, s.patches, point, candidates, true);
+  const LimitSurfaceDistance at =
+      limit_surface_distance(s.positions, s.patches, point, candidates, true);
   const double step = 1e-6;
   const auto n = static_cast<Eigen::Index>(3 * at.vertices.size());
   Eigen::VectorXd g_fd(n);
@@ -159,8 +160,8 @@ TEST(LimitSurfaceDistance, IsTheExactDistanceToTheReproducedParaboloidFromAnyEle
       rho -= ((rho - rho_p) + 2.0 * rho * (z - p.z())) / (1.0 + 2.0 * (z - p.z()) + 4.0 * rho * rho);
     }
     const Eigen::Vector3d foot(0.5 + rho * offset.x() / rho_p, rho * offset.y() / rho_p, rho * rho + shift);
-    // Search from every element whose neighbourhood holds the foot's element: the search
-    // walks at most one element away.
+    // Searched over the neighbourhood of every element around the foot's: each holds the
+    // foot's element.
     int foot_element = -1;
     for (std::size_t e = 0; e < s.patches.patch.size() && foot_element < 0; ++e) {
       const LimitSurfaceDistance d =
@@ -168,9 +169,9 @@ TEST(LimitSurfaceDistance, IsTheExactDistanceToTheReproducedParaboloidFromAnyEle
       if (d.active == 0 && (d.closest - foot).norm() < 1e-10) foot_element = static_cast<int>(e);
     }
     ASSERT_GE(foot_element, 0) << "trial " << trial;
-    for (int start : s.around[static_cast<std::size_t>(foot_element)]) {
+    for (int other : s.around[static_cast<std::size_t>(foot_element)]) {
       const LimitSurfaceDistance d = limit_surface_distance(
-          s.positions, s.patches, s.point, s.around[static_cast<std::size_t>(start)], false);
+          s.positions, s.patches, s.point, s.around[static_cast<std::size_t>(other)], false);
       EXPECT_NEAR(d.distance, (p - foot).norm(), 1e-13) << "trial " << trial;
       EXPECT_LT((d.closest - foot).norm(), 1e-12) << "trial " << trial;
       EXPECT_EQ(d.active, 0);

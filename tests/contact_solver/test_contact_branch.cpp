@@ -40,6 +40,7 @@
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_penalty.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/contact/limit_surface_contact.hpp"
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_branch.hpp"
@@ -428,6 +429,48 @@ TEST(ContactBranch, ThroughContactNoPairComesCloserThanTheThicknessLessTheTolera
   EXPECT_LT(error[1], error[0] / 5) << error[0] << " -> " << error[1];
   EXPECT_LT(error[2], error[1] / 5) << error[1] << " -> " << error[2];
   EXPECT_FALSE(samples.front().active_pairs > 0) << "already touching at the start";
+}
+
+// The same trace with the pairs measured on the limit surface (ContactGapOptions::
+// limit_surface, study.contact_surface = limit_surface): the gaps keep to the thickness less
+// the penalty's penetration, and the continuation's negative count is the Lagrangian's reduced
+// to the active limit-surface gaps' tangent space (the pairs' exact Jacobian and Hessian of
+// limit_surface_distance.hpp enter both).
+TEST(ContactBranch, OnTheLimitSurfaceTheGapsKeepTheThicknessAndTheIndexIsTheReducedLagrangians) {
+  GrownDisc& d = disc();
+  const Eigen::VectorXd& x = d.start();
+  ContactBranchOptions o = d.options();
+  o.arclength.parameter_max = 6.5;
+  o.arclength.max_steps = 60;
+  o.gap.limit_surface = make_limit_surface_contact(d.model, o.exclusion_radius);
+  std::vector<ContactBranchSample> samples;
+  const ContactBranchTrace t = trace_contact_branch(
+      d.model, d.proxy, x, GrownDisc::kStart, Eigen::VectorXd::Zero(x.size()), 1.0, d.pinned, o,
+      [&](const ContactBranchSample& s) { samples.push_back(s); });
+  EXPECT_TRUE(t.reached_bound) << t.message;
+  ASSERT_GT(samples.size(), 5u);
+  const double tol = GrownDisc::kH / 20;
+  int compared = 0;
+  for (const ContactBranchSample& s : samples) {
+    if (s.active_pairs == 0) continue;
+    EXPECT_LT(s.min_distance, GrownDisc::kH);
+    EXPECT_GT(s.min_distance, GrownDisc::kH - tol);
+    EXPECT_GT(s.penalty_energy, 0.0);
+    // Every gap of the sample's own set, measured on the limit surface, above h - h/20.
+    ContactGapConstraints gaps(d.proxy, s.pairs, GrownDisc::kH, d.model.dimension(), o.gap);
+    ASSERT_TRUE(gaps.measures_limit_surface());
+    Eigen::VectorXd values;
+    gaps.evaluate(s.sample.x, values, nullptr);
+    EXPECT_GT(values.minCoeff(), -tol) << "at phi_e = " << s.sample.parameter;
+    ObjectiveAtParameter energy(d.model, s.sample.parameter);
+    const ReducedInertia reduced =
+        contact_constrained_inertia(energy, gaps, s.sample.x, s.forces, 0.0, d.pinned);
+    EXPECT_EQ(reduced.negative, s.sample.negative_eigenvalues)
+        << "at phi_e = " << s.sample.parameter;
+    EXPECT_EQ(reduced.constraints, s.active_pairs);
+    ++compared;
+  }
+  EXPECT_GT(compared, 2) << "the folds did not touch below phi_e = 6.5";
 }
 
 // Sets of every near triangle (NearPairSelection::nearest_triangle_only off, as the

@@ -1025,6 +1025,21 @@ TEST(Scene, ContactVertexTrianglesIsReadRoundTripsAndABadNameIsRefused) {
   EXPECT_NE(error.find("every_near_triangle"), std::string::npos) << error;
 }
 
+TEST(Scene, ContactSurfaceIsReadRoundTripsAndABadNameIsRefused) {
+  EXPECT_EQ(default_scene().study.contact_surface, SceneContactSurface::ProxyTriangles);
+  const Scene s = parse_scene(
+      R"({"study": {"kind": "econe_contact", "contact_surface": "limit_surface"}})", "test");
+  EXPECT_EQ(s.study.contact_surface, SceneContactSurface::LimitSurface);
+  EXPECT_EQ(parse_scene(scene_to_json(s), "round trip").study.contact_surface,
+            SceneContactSurface::LimitSurface);
+  using test_support::error_of;
+  const std::string error = error_of([] {
+    parse_scene(R"({"study": {"kind": "econe_contact", "contact_surface": "smooth"}})", "t");
+  });
+  EXPECT_NE(error.find("study.contact_surface"), std::string::npos) << error;
+  EXPECT_NE(error.find("limit_surface"), std::string::npos) << error;
+}
+
 TEST(Scene, OrientationCheckTurnsAreReadAndBadListsRefusedByName) {
   EXPECT_EQ(default_scene().study.orientation_check_turns, std::vector<double>{22.5});
   const Scene s = parse_scene(

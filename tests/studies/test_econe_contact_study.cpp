@@ -30,6 +30,7 @@ EconeContactResults sample_results() {
   r.penalty_stiffness = 3329.0;
   r.proxy_segments_per_edge = 2;
   r.proxy_vertices = 7057;
+  r.contact_surface = "limit_surface";
   r.phi_branch = 0.0171;
   r.phi_max = 4.066;
   r.eb_hat_max = 4.27;
@@ -113,6 +114,7 @@ TEST(EconeContactResultsJson, NamesEveryKeyInOrderWithNullsForWhatIsMissing) {
   EXPECT_EQ(j["mesh"]["unknowns"].get<long long>(), 5691);
   EXPECT_EQ(j["contact_proxy"]["segments_per_edge"].get<int>(), 2);
   EXPECT_EQ(j["contact_proxy"]["vertices"].get<long long>(), 7057);
+  EXPECT_EQ(j["contact_proxy"]["surface"], "limit_surface");
 
   EconeContactResults checked = sample_results();
   checked.ipopt = EconeIpoptCheck{true, "Optimal Solution Found", 1e-7, 0.02, 1.01};

@@ -42,8 +42,8 @@ TEST(SceneContactPenalty, StiffnessFollowsTheProxysSpacing) {
   const ShellModel model(scene_mesh(one), scene_model_settings(one));
   const ContactProxy p1 = scene_contact_proxy(one, model);
   const ContactProxy p2 = scene_contact_proxy(two, model);
-  const ContactBranchOptions c1 = scene_contact_penalty(one, p1);
-  const ContactBranchOptions c2 = scene_contact_penalty(two, p2);
+  const ContactBranchOptions c1 = scene_contact_penalty(one, model, p1);
+  const ContactBranchOptions c2 = scene_contact_penalty(two, model, p2);
   const double k1 = c1.stiffness, k2 = c2.stiffness;
   const double Y = one.material.youngs_modulus, h = 0.08;
   EXPECT_DOUBLE_EQ(k1, 10.0 * contact_stiffness_scale(Y, h, proxy_mean_edge_length(p1)));
@@ -54,6 +54,19 @@ TEST(SceneContactPenalty, StiffnessFollowsTheProxysSpacing) {
   EXPECT_EQ(c1.contact_distance, c2.contact_distance);
   EXPECT_EQ(c1.exclusion_radius, c2.exclusion_radius);
   EXPECT_EQ(c1.candidate_margin, c2.candidate_margin);
+}
+
+TEST(SceneContactPenalty, TheScenesContactSurfaceSetsThePairsSurface) {
+  Scene scene = scene_with_segments(1);
+  const ShellModel model(scene_mesh(scene), scene_model_settings(scene));
+  const ContactProxy proxy = scene_contact_proxy(scene, model);
+  EXPECT_EQ(scene_contact_penalty(scene, model, proxy).gap.limit_surface, nullptr);
+  scene.study.contact_surface = SceneContactSurface::LimitSurface;
+  const ContactBranchOptions c = scene_contact_penalty(scene, model, proxy);
+  ASSERT_NE(c.gap.limit_surface, nullptr);
+  EXPECT_EQ(c.gap.limit_surface->exclusion_radius, c.exclusion_radius);
+  EXPECT_EQ(c.gap.limit_surface->patches.patch.size(), model.patches().patch.size());
+  EXPECT_EQ(c.gap.limit_surface->neighbourhoods.size(), model.patches().patch.size());
 }
 
 }  // namespace
