@@ -20,6 +20,7 @@
 #include "libshell/subdivision/element_neighbourhood.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
 #include "tests/support/expect_invalid_argument.hpp"
+#include "tests/support/paraboloid_foot.hpp"
 
 namespace growshell {
 namespace {
@@ -151,17 +152,7 @@ TEST(LimitSurfaceDistance, IsTheExactDistanceToTheReproducedParaboloidFromAnyEle
     const double side = trial % 2 == 0 ? 1.0 : -1.0;
     p.z() = std::pow(p.x() - 0.5, 2) + std::pow(p.y(), 2) + shift + side * height(rng);
     s.place_point(p);
-    // The exact foot, in the plane through the axis (as in test_closest_limit_point.cpp).
-    const Eigen::Vector2d offset(p.x() - 0.5, p.y());
-    const double rho_p = offset.norm();
-    double rho = rho_p;
-    for (int k = 0; k < 60; ++k) {
-      const double z = rho * rho + shift;
-      rho -= ((rho - rho_p) + 2.0 * rho * (z - p.z())) / (1.0 + 2.0 * (z - p.z()) + 4.0 * rho * rho);
-    }
-    const Eigen::Vector3d foot(0.5 + rho * offset.x() / rho_p, rho * offset.y() / rho_p, rho * rho + shift);
-    // Searched over the neighbourhood of every element around the foot's: each holds the
-    // foot's element.
+    const Eigen::Vector3d foot = test_support::paraboloid_foot(p, 1.0, 0.5, shift);
     int foot_element = -1;
     for (std::size_t e = 0; e < s.patches.patch.size() && foot_element < 0; ++e) {
       const LimitSurfaceDistance d =

@@ -12,6 +12,7 @@
 #include "libshell/subdivision/closest_limit_point.hpp"
 #include "libshell/subdivision/element_patches.hpp"
 #include "libshell/subdivision/limit_surface.hpp"
+#include "tests/support/paraboloid_foot.hpp"
 
 namespace growshell {
 namespace {
@@ -44,20 +45,9 @@ struct Paraboloid {
   double height_above(const Eigen::Vector3d& x) const {
     return kCurvature * (std::pow(x.x() - kCentreX, 2) + std::pow(x.y(), 2));
   }
-  /// The exact foot point of p on the paraboloid: in the plane through the axis and p, the
-  /// root of (rho - rho_p) + 2 a rho (a rho^2 + shift - z_p) = 0 near rho_p (Newton).
+  /// The exact foot point of p on the paraboloid.
   Eigen::Vector3d foot(const Eigen::Vector3d& p) const {
-    const Eigen::Vector2d offset(p.x() - kCentreX, p.y());
-    const double rho_p = offset.norm();
-    double rho = rho_p;
-    for (int k = 0; k < 60; ++k) {
-      const double z = kCurvature * rho * rho + shift;
-      const double f = (rho - rho_p) + 2.0 * kCurvature * rho * (z - p.z());
-      const double df = 1.0 + 2.0 * kCurvature * (z - p.z()) + 4.0 * kCurvature * kCurvature * rho * rho;
-      rho -= f / df;
-    }
-    const Eigen::Vector2d dir = rho_p > 0.0 ? Eigen::Vector2d(offset / rho_p) : Eigen::Vector2d(1.0, 0.0);
-    return {kCentreX + rho * dir.x(), rho * dir.y(), kCurvature * rho * rho + shift};
+    return test_support::paraboloid_foot(p, kCurvature, kCentreX, shift);
   }
   /// The element whose limit surface contains the foot (the one whose xy triangle holds it:
   /// x and y are reproduced exactly), and the foot's parameter there.
