@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -59,6 +60,13 @@ void check_limit_surface(const LimitSurfaceContact& limit, const ContactProxy& p
   if (limit.neighbourhoods.size() != elements)
     throw_invalid("the limit surface has " + std::to_string(limit.neighbourhoods.size()) +
                   " neighbourhoods for " + std::to_string(elements) + " elements");
+  const Eigen::Index n = proxy.segments_per_edge;
+  if (n < 1 || proxy.triangles.rows() != static_cast<Eigen::Index>(elements) * n * n)
+    throw_invalid("the proxy has " + std::to_string(proxy.triangles.rows()) + " triangles, not " +
+                  std::to_string(n) + "^2 for each of the limit surface's " +
+                  std::to_string(elements) + " elements (another model's?)");
+  if (proxy.triangle_element.size() > 0 && proxy.triangle_element.minCoeff() < 0)
+    throw_invalid("the proxy names a negative element");
   if (proxy.triangle_element.size() > 0 &&
       proxy.triangle_element.maxCoeff() >= static_cast<int>(elements))
     throw_invalid("the proxy names element " + std::to_string(proxy.triangle_element.maxCoeff()) +
@@ -160,8 +168,8 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
     }
     if (limit != nullptr) {
       pair.element = proxy.triangle_element(t);
-      // A pair of the same vertex whose triangle lies in this one's neighbourhood, and this
-      // one's in its, measures the same foot: keep the first.
+      // A pair of the same vertex whose element shares a corner with this one's measures the
+      // same part of the surface: keep the first.
       const std::vector<int>& around =
           limit->neighbourhoods[static_cast<std::size_t>(pair.element)];
       std::vector<int>& kept = kept_elements[p];
@@ -222,7 +230,7 @@ void ContactGapConstraints::build_patterns(const LimitSurfaceContact* limit) {
   for (const Pair& pair : pairs_) {
     stencil.clear();
     if (pair.element >= 0) {
-      // The proxy vertex's dofs and those of every element the walk may visit.
+      // The proxy vertex's dofs and those of every candidate element.
       for (int v : pair.point.vertex)
         for (int c = 0; c < 3; ++c) stencil.push_back(3 * v + c);
       for (int e : pair.candidates)

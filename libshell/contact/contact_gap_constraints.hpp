@@ -49,14 +49,21 @@
 ///
 /// The limit surface as the second primitive (ContactGapOptions::limit_surface). A
 /// vertex-triangle pair then measures the distance from the proxy vertex to the limit surface
-/// around the triangle's element (limit_surface_distance.hpp, walked from that element through
-/// its neighbourhood, less the vertex's neighbours on the sheet: limit_surface_contact.hpp), C1
-/// where the flat triangle's is C1 only within its regions. Its stencil is the proxy vertex's
-/// control dofs and those of every element the walk may visit, and its
-/// derivatives come straight in those dofs (ContactPairDistance::dof_gradient). Edge-edge pairs
-/// have no such form and are refused. Two pairs of one proxy vertex whose triangles lie in each
-/// other's neighbourhoods would measure the same foot twice: of such pairs only the first is
-/// kept, so count() may be below the number of candidate pairs.
+/// of its candidate elements (limit_surface_distance.hpp): the neighbourhood of the triangle's
+/// element less the vertex's neighbours on the sheet (limit_surface_contact.hpp). The distance
+/// is C1 where the flat triangle's is C1 only within its regions. Its stencil is the proxy
+/// vertex's control dofs and those of every candidate, and its derivatives come straight in
+/// those dofs (ContactPairDistance::dof_gradient). Edge-edge pairs have no such form and are
+/// refused. Of the pairs of one proxy vertex whose elements share a corner, which would
+/// measure the same part of the surface twice, only the first is kept, so count() may be below
+/// the number of candidate pairs. Pairs of one vertex whose elements are farther apart are all
+/// kept: with every near triangle of a vertex as candidates (the winding's sets), two of them
+/// on one layer can then find the same foot and hold it twice. Such a pair's geometry names the
+/// proxy triangle under its foot (`second`, `vertices`, `vertex_weights`: where its force acts on
+/// the proxy); its closest points are on the limit surface, so their difference equals the weighted
+/// proxy vertices only to the proxy's sag. Where the derivatives are not defined (the vertex on the
+/// surface, a degenerate foot, no converged search) evaluation throws std::invalid_argument
+/// naming the pair instead of using the distance floor.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -164,7 +171,8 @@ struct ContactPairDistance {
 /// Contact gaps c_k(x) >= 0 of a fixed list of candidate pairs (see the file comment).
 ///
 /// Constraint order: the vertex-triangle pairs (rows of ContactCandidates::vertex_triangle, in
-/// order) then the edge-edge pairs (rows of ContactCandidates::edge_edge). Unknowns: the
+/// order; on the limit surface without the dropped repeats) then the edge-edge pairs (rows of
+/// ContactCandidates::edge_edge). Unknowns: the
 /// control coordinates x of the ShellModel the proxy was made from (x[3 v + c], metres),
 /// optionally followed by further unknowns that the constraints do not depend on.
 ///
@@ -223,8 +231,9 @@ class ContactGapConstraints final : public InequalityConstraints {
   ContactPairGeometry pair_geometry(const Eigen::Ref<const Eigen::VectorXd>& x,
                                     Eigen::Index k) const;
 
-  /// Distance of pair k at x with derivatives w.r.t. its 12 proxy coordinates; the Hessians
-  /// only if with_hessian. The building block of constraints and penalties.
+  /// Distance of pair k at x with derivatives w.r.t. its 12 proxy coordinates (on the limit
+  /// surface: w.r.t. its dofs, ContactPairDistance::on_pair_dofs); the Hessians only if
+  /// with_hessian. The building block of constraints and penalties.
   ContactPairDistance pair_distance(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Index k,
                                     bool with_hessian) const;
 
@@ -271,7 +280,7 @@ class ContactGapConstraints final : public InequalityConstraints {
     // combination of control points.
     int element = -1;
     ControlPointCombination point;
-    std::vector<int> candidates;  // the elements the walk may visit (sorted)
+    std::vector<int> candidates;  // the elements searched for the foot (sorted)
   };
 
   // The pairs' stencils and the Jacobian and Hessian patterns, from pairs_.

@@ -21,10 +21,14 @@ namespace growshell {
 
 /// The elements' patches and each element's neighbourhood (element_neighbourhoods): a proxy
 /// vertex paired with a triangle of element e is measured against the limit surface of the
-/// neighbourhood of e, walked from e, less the elements that are the vertex's neighbours on
-/// the sheet: those with a proxy vertex closer to it than `exclusion_radius` in the reference
-/// (the rule of contact_candidates.hpp; e itself always stays). Without that, the walk from
-/// a triangle just beyond the exclusion radius can reach the vertex's own surface.
+/// neighbourhood of e less the elements that are the vertex's neighbours on the sheet: those
+/// with a proxy vertex closer to it than `exclusion_radius` in the reference (the rule of
+/// contact_candidates.hpp, applied element by element, so to about an element's width; e
+/// itself always stays). Without that, the search from a triangle just beyond the exclusion
+/// radius can reach the vertex's own surface. With several proxy segments per edge e itself
+/// can hold proxy vertices within the radius; a foot found there would be the vertex's own
+/// surface (at distance zero evaluation throws), so keep the exclusion radius several element
+/// widths (the default 8 h is).
 struct LimitSurfaceContact {
   ElementPatches patches;
   std::vector<std::vector<int>> neighbourhoods;

@@ -9,8 +9,9 @@
 /// The point is a fixed linear combination of control points, p = sum_i w_i X_i (a sheet
 /// vertex's limit position, or any proxy vertex: a row of ContactProxy::map). Its closest
 /// point on the surface of the candidate elements is x(xi*) = sum_a N_a(xi*) X_a: each
-/// element is searched by closest_limit_point and the lowest distance wins (among distances
-/// equal to 1e-12, a minimiser free inside its element before one held on a side, then the
+/// element is searched by closest_limit_point from its centroid (a search that does not
+/// converge is left out) and the lowest distance found wins (among values of D equal to a
+/// relative 1e-12, a minimiser free inside its element before one held on a side, then the
 /// lower element index); elements whose control points' bounding box lies farther than the
 /// best distance found (the surface lies in their convex hull) are not searched. With r = p -
 /// x(xi*) and D = |r|^2 / 2 = min over xi:

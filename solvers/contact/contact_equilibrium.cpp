@@ -46,6 +46,12 @@ ContactSolveResult solve_contact_equilibrium(const ShellModel& model, double exc
   if (options.max_rounds < 1) throw std::invalid_argument("ContactSolveOptions: max_rounds must be >= 1");
   if (!(std::isfinite(options.violation_tolerance) && options.violation_tolerance >= 0.0))
     throw std::invalid_argument("ContactSolveOptions: violation_tolerance must be finite and >= 0");
+  // Its multipliers are matched to the candidate rows pair by pair, which the limit surface's
+  // merged pairs do not keep.
+  if (options.gap.limit_surface)
+    throw std::invalid_argument(
+        "ContactSolveOptions: gap.limit_surface is not supported by the hard-contact solve "
+        "(its pairs are measured on the proxy's triangles)");
   ObjectiveAtParameter energy(model, excess_angle);
   if (x0.size() != model.dimension())
     throw std::invalid_argument("solve_contact_equilibrium: x0 has the wrong size");

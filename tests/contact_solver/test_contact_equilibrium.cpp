@@ -33,12 +33,13 @@
 #include <string>
 #include <vector>
 
-#include "libshell/analysis/contact_zones.hpp"
 #include "core/objective_at_parameter.hpp"
+#include "libshell/analysis/contact_zones.hpp"
 #include "libshell/assembly/shell_model.hpp"
 #include "libshell/contact/contact_candidates.hpp"
 #include "libshell/contact/contact_gap_constraints.hpp"
 #include "libshell/contact/contact_proxy.hpp"
+#include "libshell/contact/limit_surface_contact.hpp"
 #include "libshell/contact/near_contact_pairs.hpp"
 #include "libshell/mesh/disc_mesh.hpp"
 #include "solvers/contact/contact_equilibrium.hpp"
@@ -369,6 +370,10 @@ TEST(ContactEquilibrium, RejectsBadOptions) {
   ContactSolveOptions rounds = good;
   rounds.max_rounds = 0;
   EXPECT_NE(message_of(rounds, x0).find("max_rounds"), std::string::npos);
+  ContactSolveOptions on_limit_surface = good;
+  on_limit_surface.gap.limit_surface = make_limit_surface_contact(s.model, good.exclusion_radius);
+  EXPECT_NE(message_of(on_limit_surface, x0).find("gap.limit_surface is not supported"),
+            std::string::npos);
   EXPECT_NE(message_of(good, Eigen::VectorXd::Zero(x0.size() - 1)).find("x0"), std::string::npos);
 }
 
