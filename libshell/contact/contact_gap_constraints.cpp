@@ -146,7 +146,6 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
   };
   pairs_.reserve(static_cast<std::size_t>(num_pairs));
   std::unordered_map<int, std::vector<int>> kept_elements;  // limit surface: per proxy vertex
-  vertex_triangle_count_ = pairs.vertex_triangle.rows();
   for (Eigen::Index r = 0; r < pairs.vertex_triangle.rows(); ++r) {
     const int p = pairs.vertex_triangle(r, 0);
     const int t = pairs.vertex_triangle(r, 1);
@@ -220,10 +219,11 @@ ContactGapConstraints::ContactGapConstraints(const ContactProxy& proxy,
     pairs_.push_back(pair);
   }
 
-  build_patterns(limit);
+  build_patterns();
 }
 
-void ContactGapConstraints::build_patterns(const LimitSurfaceContact* limit) {
+void ContactGapConstraints::build_patterns() {
+  const LimitSurfaceContact* limit = options_.limit_surface.get();
   // ---- stencils: union of the map's columns in the rows of the pair's proxy vertices ----
   dof_begin_.assign(1, 0);
   std::vector<int> stencil;

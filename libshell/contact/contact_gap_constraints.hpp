@@ -284,7 +284,7 @@ class ContactGapConstraints final : public InequalityConstraints {
   };
 
   // The pairs' stencils and the Jacobian and Hessian patterns, from pairs_.
-  void build_patterns(const LimitSurfaceContact* limit);
+  void build_patterns();
   void check_pair_index(Eigen::Index k, const char* who) const;
   void check_x(const Eigen::Ref<const Eigen::VectorXd>& x, const char* who) const;
   // Proxy positions of the pair's four vertices, one per column (metres).
